@@ -1,0 +1,423 @@
+#include "imap/golden/stereo.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace imap::golden {
+namespace {
+
+// Cost arithmetic is exact: costs use 32-bit integers when the bound below
+// proves that every candidate of every state fits, 64-bit otherwise.
+// Unreachable states hold kInf; any candidate from one is >= kInf and so
+// never beats a reachable candidate (whose value is < bound < kInf).
+template <class C>
+struct CostTraits;
+template <>
+struct CostTraits<int32_t> {
+    static constexpr int32_t kInf = int32_t{1} << 30;
+};
+template <>
+struct CostTraits<int64_t> {
+    static constexpr int64_t kInf = int64_t{1} << 62;
+};
+
+// Upper bound of any path cost to any state plus one step: a path to (i, j)
+// has at most (i + 1) right-pixel steps and (i + 1 + j) left-pixel steps.
+int64_t cost_bound(const Params& p, int N) {
+    const int64_t wm_max = int64_t{p.km} * 255 + int64_t{p.kb} * p.gb;
+    const int64_t w = std::max({wm_max, int64_t{p.Wo}, int64_t{p.Wd}});
+    return (2 * int64_t{N} + p.D + 4) * w;
+}
+
+template <class C>
+struct Line {
+    const Params& p;
+    const uint8_t* L;
+    const uint8_t* R;
+    int N, D;
+    C km, kb, Wo, Wd;
+    int gb;
+
+    Line(const Params& pp, const uint8_t* l, const uint8_t* r, int n)
+        : p(pp), L(l), R(r), N(n), D(pp.D), km(pp.km), kb(pp.kb), Wo(pp.Wo), Wd(pp.Wd),
+          gb(pp.gb) {}
+
+    // Wm(i, j) with a = R[i], b = L[i + j].
+    C wm(int a, int b) const {
+        const int diff = a > b ? a - b : b - a;
+        const int dark = gb - std::min(a, b);
+        return km * diff + kb * (dark > 0 ? dark : 0);
+    }
+    int top(int i) const { return std::min(D - 1, N - 1 - i); }  // last valid level at site i
+
+    // Right wavefront (A.3 recurrence) over sites first..N-1, starting from
+    // column `first - 1` whose costs are in prev[0..D-1] (prev[D] = kInf).
+    // Pointers go to tab rows starting at site `first`. Returns E(N-1, 0).
+    // Each column is two passes: M and D do not depend on the column itself
+    // (a vectorisable loop), O is a serial scan in increasing j. The result
+    // is the A.3 tie order: M, then D if strictly smaller, then O if
+    // strictly smaller.
+    C right(std::vector<C>& prev, std::vector<C>& cur, int first, uint8_t* tab) const {
+        constexpr C kInf = CostTraits<C>::kInf;
+        for (int i = first; i < N; ++i) {
+            const int jm = top(i);
+            uint8_t* bp = tab + static_cast<size_t>(i - first) * D;
+            const uint8_t* lp = L + i;
+            const int a = R[i];
+            const C* pv = prev.data();
+            C* cv = cur.data();
+            for (int j = 0; j <= jm; ++j) {
+                const C m = pv[j] + wm(a, lp[j]);
+                const C d = pv[j + 1] + Wd;
+                const bool take_d = d < m;
+                cv[j] = take_d ? d : m;
+                bp[j] = take_d ? kD : kM;
+            }
+            C run = cv[0];
+            for (int j = 1; j <= jm; ++j) {
+                const C o = run + Wo;
+                const C c = cv[j];
+                const bool take_o = o < c;
+                run = take_o ? o : c;
+                cv[j] = run;
+                bp[j] = take_o ? uint8_t{kO} : bp[j];
+            }
+            mark_unreachable(cv, bp, jm);
+            for (int j = jm + 1; j < D; ++j) bp[j] = kNone;
+            std::fill(cur.begin() + jm + 1, cur.end(), kInf);
+            prev.swap(cur);
+        }
+        return prev[0];
+    }
+
+    // Left wavefront (A.4): cost-to-go G for sites s-2 down to -1, starting
+    // from site s-1 whose costs are in next[1..D] (index = level + 1, with
+    // next[0] = kInf and kInf above the last valid level, so that M from an
+    // invalid state and D from level -1 are absent). Pointer row r of tab is
+    // site r - 1. Same two-pass structure, O scanned in decreasing j.
+    C left(std::vector<C>& next, std::vector<C>& cur, int s, uint8_t* tab) const {
+        constexpr C kInf = CostTraits<C>::kInf;
+        for (int i = s - 2; i >= -1; --i) {
+            const int jm = i < 0 ? D - 1 : top(i);
+            uint8_t* fp = tab + static_cast<size_t>(i + 1) * D;
+            const int a = R[i + 1];
+            const uint8_t* lp = L + i + 1;
+            const C* nv = next.data();
+            C* cv = cur.data() + 1;  // cv[j] = G(i, j)
+            for (int j = 0; j <= jm; ++j) {
+                const C m = nv[j + 1] + wm(a, lp[j]);  // G(i+1, j) + Wm(i+1, j)
+                const C d = nv[j] + Wd;                // G(i+1, j-1) + Wd
+                const bool take_d = d < m;
+                cv[j] = take_d ? d : m;
+                fp[j] = take_d ? kD : kM;
+            }
+            C run = cv[jm];
+            for (int j = jm - 1; j >= 0; --j) {
+                const C o = run + Wo;  // G(i, j+1) + Wo
+                const C c = cv[j];
+                const bool take_o = o < c;
+                run = take_o ? o : c;
+                cv[j] = run;
+                fp[j] = take_o ? uint8_t{kO} : fp[j];
+            }
+            mark_unreachable(cv, fp, jm);
+            for (int j = jm + 1; j < D; ++j) fp[j] = kNone;
+            std::fill(cur.begin() + jm + 2, cur.end(), kInf);
+            next.swap(cur);
+        }
+        return next[1];
+    }
+
+    // States whose every candidate came from an unreachable state.
+    static void mark_unreachable(C* cv, uint8_t* ptr, int jm) {
+        constexpr C kInf = CostTraits<C>::kInf;
+        for (int j = 0; j <= jm; ++j) {
+            const bool none = cv[j] >= kInf;
+            cv[j] = none ? kInf : cv[j];
+            ptr[j] = none ? uint8_t{kNone} : ptr[j];
+        }
+    }
+};
+
+template <class C>
+void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, int N, LineTables& t) {
+    constexpr C kInf = CostTraits<C>::kInf;
+    thread_local std::vector<C> a, b;
+    const int D = p.D;
+    a.assign(D + 2, kInf);
+    b.assign(D + 2, kInf);
+    Line<C> line(p, L, R, N);
+
+    t.N = N;
+    t.D = D;
+    t.bidir = p.mode == Mode::Bidir;
+    if (!t.bidir) {
+        t.s = 0;
+        t.ds = -1;
+        t.right_first = 0;
+        t.right.resize(static_cast<size_t>(N) * D);
+        t.left.clear();
+        for (int j = 0; j < D; ++j) a[j] = C(j) * line.Wo;  // E(-1, j) = j * Wo
+        a[D] = kInf;
+        t.right_cost = line.right(a, b, 0, t.right.data());
+        t.left_cost = 0;
+        return;
+    }
+
+    const int s = resolve_seed_col(p, N);
+    const int ds = p.seed_disp.free ? -1 : p.seed_disp.value;
+    t.s = s;
+    t.ds = ds;
+    t.right_first = s;
+    t.right.resize(static_cast<size_t>(N - s) * D);
+    t.left.resize(static_cast<size_t>(s + 1) * D);
+
+    // Right wavefront: column s is the start (A.4).
+    {
+        uint8_t* bp = t.right.data();
+        const int jm = line.top(s);
+        for (int j = 0; j < D; ++j) {
+            if (j > jm || (ds >= 0 && j < ds)) {
+                a[j] = kInf;
+                bp[j] = kNone;
+            } else if (ds < 0) {
+                a[j] = 0;
+                bp[j] = kM;
+            } else {
+                a[j] = C(j - ds) * line.Wo;
+                bp[j] = j == ds ? kM : kO;
+            }
+        }
+        a[D] = kInf;
+        t.right_cost = line.right(a, b, s + 1, bp + D);  // = E(s, 0) when s = N-1
+    }
+
+    // Left wavefront: site s-1 is the start, stored at row s.
+    {
+        uint8_t* fp = t.left.data() + static_cast<size_t>(s) * D;
+        a.assign(D + 2, kInf);
+        b.assign(D + 2, kInf);  // index 0 (level -1) must stay kInf in both buffers
+        const int jm = line.top(s - 1);
+        for (int j = 0; j < D; ++j) {
+            if (j > jm || (ds >= 0 && j > ds)) {
+                fp[j] = kNone;
+            } else if (ds < 0) {
+                a[j + 1] = 0;
+                fp[j] = kM;
+            } else {
+                a[j + 1] = C(ds - j) * line.Wo;
+                fp[j] = j == ds ? kM : kO;
+            }
+        }
+        t.left_cost = line.left(a, b, s, t.left.data());
+    }
+}
+
+bool right_state_ok(const LineTables& t, int i, int j) {
+    if (j < 0 || j >= t.D) return false;
+    if (!t.bidir && i == -1) return true;  // virtual start column
+    if (i < t.right_first || i > t.N - 1 || i + j > t.N - 1) return false;
+    return t.bp(i, j) != kNone;
+}
+
+bool left_state_ok(const LineTables& t, int i, int j) {
+    if (j < 0 || j >= t.D) return false;
+    if (i < -1 || i > t.s - 1 || (i >= 0 && i + j > t.N - 1)) return false;
+    return t.fp(i, j) != kNone;
+}
+
+bool neighbours_agree(const LineTables* above, const LineTables* below) {
+    return above != nullptr && below != nullptr;
+}
+
+}  // namespace
+
+void forward_line(const Params& p, const uint8_t* L, const uint8_t* R, int N, LineTables& out) {
+    if (cost_bound(p, N) < (int64_t{1} << 29))
+        forward_typed<int32_t>(p, L, R, N, out);
+    else
+        forward_typed<int64_t>(p, L, R, N, out);
+}
+
+uint8_t voted_bp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
+                 int j) {
+    const uint8_t own = self.bp(i, j);
+    if (!neighbours_agree(above, below)) return own;
+    const uint8_t v = above->bp(i, j);
+    if (v == own || v != below->bp(i, j)) return own;
+    bool ok = false;
+    switch (v) {
+        case kM:
+            ok = right_state_ok(self, i - 1, j);
+            break;
+        case kD:
+            ok = right_state_ok(self, i - 1, j + 1);
+            break;
+        case kO:
+            ok = right_state_ok(self, i, j - 1);
+            break;
+        default:
+            break;
+    }
+    return ok ? v : own;
+}
+
+uint8_t voted_fp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
+                 int j) {
+    const uint8_t own = self.fp(i, j);
+    if (!neighbours_agree(above, below)) return own;
+    const uint8_t v = above->fp(i, j);
+    if (v == own || v != below->fp(i, j)) return own;
+    bool ok = false;
+    switch (v) {
+        case kM:
+            ok = left_state_ok(self, i + 1, j);
+            break;
+        case kD:
+            ok = left_state_ok(self, i + 1, j - 1);
+            break;
+        case kO:
+            ok = left_state_ok(self, i, j + 1);
+            break;
+        default:
+            break;
+    }
+    return ok ? v : own;
+}
+
+std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
+                             const LineTables* below, bool vote) {
+    if (!vote) above = below = nullptr;
+    std::vector<Event> ev;
+    ev.reserve(static_cast<size_t>(2 * self.N + self.D));
+
+    if (self.bidir) {
+        // Left wavefront: forward from (-1, 0) to (s-1, ds) or any state of site s-1.
+        int i = -1, j = 0;
+        const int last = self.s - 1;
+        while (!(i == last && (self.ds < 0 || j == self.ds))) {
+            const uint8_t v = voted_fp(above, self, below, i, j);
+            switch (v) {
+                case kM:
+                    ++i;
+                    break;
+                case kD:
+                    ++i;
+                    --j;
+                    break;
+                default:  // kO; kNone cannot occur on a reachable path
+                    ++j;
+                    break;
+            }
+            ev.push_back({i, j, static_cast<Step>(v)});
+        }
+    }
+
+    // Right wavefront (or the whole line in single mode): back from (N-1, 0).
+    const int stop = self.bidir ? self.s : -1;
+    int i = self.N - 1, j = 0;
+    while (i > stop) {
+        const uint8_t v = voted_bp(above, self, below, i, j);
+        ev.push_back({i, j, static_cast<Step>(v)});
+        switch (v) {
+            case kM:
+                --i;
+                break;
+            case kD:
+                --i;
+                ++j;
+                break;
+            default:  // kO
+                --j;
+                break;
+        }
+    }
+    if (self.bidir) {
+        while (self.ds >= 0 && j > self.ds) {  // O chain above a fixed seed
+            ev.push_back({i, j, kO});
+            --j;
+        }
+        ev.push_back({i, j, kM});  // the seed
+    }
+    return ev;
+}
+
+void render_line(const std::vector<Event>& events, Frame frame, int N, uint8_t* out) {
+    std::fill(out, out + N, kOccluded);
+    for (const Event& e : events) {
+        if (e.step != kM) continue;
+        int x = 0;
+        switch (frame) {
+            case Frame::Right:
+                x = e.i;
+                break;
+            case Frame::Left:
+                x = e.i + e.j;
+                break;
+            case Frame::Cyclopean:
+                x = (2 * e.i + e.j) >> 1;
+                break;
+        }
+        if (x >= 0 && x < N) out[x] = static_cast<uint8_t>(e.j);
+    }
+}
+
+void fill_row(uint8_t* row, int n) {
+    thread_local std::vector<int> left_val;
+    left_val.assign(static_cast<size_t>(n), -1);
+    int last = -1;
+    for (int x = 0; x < n; ++x) {
+        if (row[x] != kOccluded) last = row[x];
+        left_val[x] = last;
+    }
+    int right = -1;
+    for (int x = n - 1; x >= 0; --x) {
+        if (row[x] != kOccluded) {
+            right = row[x];
+            continue;
+        }
+        const int l = left_val[x];
+        int v = 0;
+        if (l >= 0 && right >= 0)
+            v = std::min(l, right);
+        else if (l >= 0)
+            v = l;
+        else if (right >= 0)
+            v = right;
+        row[x] = static_cast<uint8_t>(v);
+    }
+}
+
+DisparityMap compute(const Params& p, ImageView left, ImageView right, const Roi& roi, bool fill) {
+    if (left.width != right.width || left.height != right.height)
+        throw ParamError("left and right images differ in size: " + std::to_string(left.width) +
+                         "x" + std::to_string(left.height) + " vs " +
+                         std::to_string(right.width) + "x" + std::to_string(right.height));
+    validate(p, roi, left.width, left.height);
+    const int N = roi.w, H = roi.h;
+    DisparityMap map;
+    map.width = N;
+    map.height = H;
+    map.data.assign(static_cast<size_t>(N) * H, kOccluded);
+
+    std::array<LineTables, 3> tabs;  // lines y-1, y, y+1 (rolling)
+    auto fwd = [&](int y) {
+        forward_line(p, left.row(roi.y0 + y) + roi.x0, right.row(roi.y0 + y) + roi.x0, N,
+                     tabs[static_cast<size_t>(y % 3)]);
+    };
+    fwd(0);
+    for (int y = 0; y < H; ++y) {
+        if (y + 1 < H) fwd(y + 1);
+        const LineTables* above = y > 0 ? &tabs[static_cast<size_t>((y - 1) % 3)] : nullptr;
+        const LineTables* below = y + 1 < H ? &tabs[static_cast<size_t>((y + 1) % 3)] : nullptr;
+        const std::vector<Event> ev =
+            backtrack(above, tabs[static_cast<size_t>(y % 3)], below, p.vote);
+        uint8_t* row = map.data.data() + static_cast<size_t>(y) * N;
+        render_line(ev, p.frame, N, row);
+        if (fill) fill_row(row, N);
+    }
+    return map;
+}
+
+}  // namespace imap::golden

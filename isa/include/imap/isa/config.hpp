@@ -1,0 +1,85 @@
+// Machine parameters: everything the unpublished hardware leaves open is a
+// named, documented, listable parameter (SPEC Part B). docs/isa.md explains
+// each default and marks the assumptions.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace imap::isa {
+
+// Invalid parameter: the message names the parameter, the value and the range.
+class ConfigError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// One row of a parameter report.
+struct ParamInfo {
+    std::string name;
+    std::string value;
+    std::string range;  // allowed values, e.g. "2..65536"
+    std::string unit;   // "cycles", "bytes", ...
+    std::string group;  // "machine" or "cost"
+    std::string doc;
+    bool assumption = false;  // not published for the real board: a modelling choice
+};
+
+// Cycles per instruction class. Every instruction is charged exactly one
+// class (opcodes.hpp); the named fields are the only place costs live.
+struct CostTable {
+    uint32_t alu = 1;             // PE ALU, shifter, comparator, moves, selects
+    uint32_t mem = 1;             // ld / st with a broadcast address
+    uint32_t indirect_extra = 1;  // added to mem for ldx / stx
+    uint32_t ring_hop = 1;        // per hop of rxl / rxr
+    uint32_t mask = 1;            // mif / melse / mend / mall
+    uint32_t status = 1;          // rany / rall (status reduction over the mask bus)
+    uint32_t cp = 1;              // CP ALU, param-block access, branches, nop, halt
+    uint32_t branch_taken = 1;    // added when a jump / branch / call / ret / loop is taken
+    uint32_t video_line = 1;      // vin / vout (line already in the line buffer)
+    uint32_t xfer_setup = 8;      // xld / xst fixed part
+    uint32_t xfer_per_byte = 1;   // xld / xst per byte per PE (all PEs in parallel)
+
+    struct Field {
+        const char* name;
+        uint32_t CostTable::*ptr;
+        uint32_t min, max;
+        const char* doc;
+    };
+    static const std::vector<Field>& fields();
+
+    // Set / get by name ("ring_hop"); throws ConfigError for an unknown name
+    // or a value outside the field's range.
+    void set(std::string_view name, int64_t value);
+    uint32_t get(std::string_view name) const;
+    void validate() const;
+    std::vector<ParamInfo> list() const;
+};
+
+struct MachineConfig {
+    int pes = 256;                  // PEs in the linear array (runtime)
+    double clock_mhz = 40.0;        // array clock, for modeled time only
+    uint32_t mem_bytes = 1024;      // local memory per PE
+    uint32_t ext_bytes = 65536;     // external memory per PE (0 disables xld / xst)
+    int pe_regs = 16;               // general registers per PE
+    int mask_depth = 8;             // mif nesting depth
+    int call_depth = 8;             // CP return stack depth
+    bool indirect = true;           // per-PE addressing (ldx / stx) present
+    uint64_t watchdog_cycles = 2000000000ull;  // runaway-program limit
+    CostTable costs;
+
+    // Throws ConfigError naming the first invalid parameter and its range.
+    void validate() const;
+    // Every parameter (machine and cost), for reports.
+    std::vector<ParamInfo> list() const;
+    // Set any parameter (machine or cost) from text, as on a command line:
+    // set("pes", "128"), set("ring_hop", "2"), set("indirect", "off").
+    void set(std::string_view name, std::string_view value);
+    // Modeled time of `cycles` at clock_mhz.
+    double seconds(uint64_t cycles) const { return static_cast<double>(cycles) / (clock_mhz * 1e6); }
+};
+
+}  // namespace imap::isa

@@ -1,0 +1,127 @@
+#include "cli_common.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+namespace imapsim {
+
+namespace g = imap::golden;
+
+long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
+                         long long hi) {
+    std::ostringstream range;
+    range << lo << ".." << hi;
+    if (text.empty() || text.find_first_not_of("+-0123456789") != std::string::npos)
+        throw UserError("invalid value '" + text + "' for " + flag + ": expected an integer in " +
+                        range.str());
+    errno = 0;
+    char* end = nullptr;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (errno != 0 || end == text.c_str() || *end != '\0')
+        throw UserError("invalid value '" + text + "' for " + flag + ": expected an integer in " +
+                        range.str());
+    if (v < lo || v > hi)
+        throw UserError("value " + text + " for " + flag + " is out of range (allowed: " +
+                        range.str() + ")");
+    return v;
+}
+
+void add_algo_flags(CLI::App* app, AlgoFlags& f) {
+    const g::Params d;
+    auto opt = [&](const char* name, std::string& dst, const std::string& help,
+                   const std::string& def) {
+        app->add_option(name, dst, help + " [default: " + def + "]")->group("Algorithm (SPEC A.1)");
+    };
+    opt("--D", f.D, "disparity levels 0..D-1 (1..min(ROI width, 255))", std::to_string(d.D));
+    opt("--km", f.km, "match weight on |R - L| (0..1000000)", std::to_string(d.km));
+    opt("--kb", f.kb, "match weight on gb - min(R, L) (0..1000000)", std::to_string(d.kb));
+    opt("--gb", f.gb, "intensity upper bound (0..255)", std::to_string(d.gb));
+    opt("--Wo", f.Wo, "occlusion cost (Wd..1000000)", std::to_string(d.Wo));
+    opt("--Wd", f.Wd, "discontinuity cost (0..Wo)", std::to_string(d.Wd));
+    opt("--mode", f.mode, "single (one wavefront per line) or bidir (two)", "bidir");
+    opt("--seed-col", f.seed_col, "bidir seed column: balanced, center or 1..N-1", "balanced");
+    opt("--seed-disp", f.seed_disp, "bidir seed disparity: free or 0..D-1 (s + ds < N)", "free");
+    opt("--vote", f.vote, "inter-scanline majority vote: on or off", "on");
+    opt("--roi", f.roi, "region of interest x0,y0,w,h", "whole image");
+    opt("--frame", f.frame, "output frame: cyc (cyclopean), left or right", "cyc");
+    app->add_flag("--fill", f.fill, "replace occluded pixels (255) by the background fill")
+        ->group("Algorithm (SPEC A.1)");
+}
+
+g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
+    g::Params p;
+    auto num = [](const std::string& flag, const std::string& text, long long lo, long long hi,
+                  int& dst) {
+        if (!text.empty()) dst = static_cast<int>(parse_int_flag(flag, text, lo, hi));
+    };
+    num("--D", f.D, 1, g::kMaxLevels, p.D);
+    num("--km", f.km, 0, g::kMaxWeight, p.km);
+    num("--kb", f.kb, 0, g::kMaxWeight, p.kb);
+    num("--gb", f.gb, 0, 255, p.gb);
+    num("--Wo", f.Wo, 0, g::kMaxWeight, p.Wo);
+    num("--Wd", f.Wd, 0, g::kMaxWeight, p.Wd);
+
+    if (f.mode == "single")
+        p.mode = g::Mode::Single;
+    else if (f.mode == "bidir")
+        p.mode = g::Mode::Bidir;
+    else
+        throw UserError("invalid value '" + f.mode + "' for --mode: expected single or bidir");
+
+    if (f.seed_col == "balanced")
+        p.seed_col.kind = g::SeedColKind::Balanced;
+    else if (f.seed_col == "center")
+        p.seed_col.kind = g::SeedColKind::Center;
+    else {
+        p.seed_col.kind = g::SeedColKind::Fixed;
+        p.seed_col.value = static_cast<int>(parse_int_flag(
+            "--seed-col (balanced, center or a column)", f.seed_col, 1, g::kMaxWidth - 1));
+    }
+
+    if (f.seed_disp == "free") {
+        p.seed_disp.free = true;
+    } else {
+        p.seed_disp.free = false;
+        p.seed_disp.value = static_cast<int>(parse_int_flag(
+            "--seed-disp (free or a disparity)", f.seed_disp, 0, g::kMaxLevels - 1));
+    }
+
+    if (f.vote == "on")
+        p.vote = true;
+    else if (f.vote == "off")
+        p.vote = false;
+    else
+        throw UserError("invalid value '" + f.vote + "' for --vote: expected on or off");
+
+    if (f.frame == "cyc" || f.frame == "cyclopean")
+        p.frame = g::Frame::Cyclopean;
+    else if (f.frame == "left")
+        p.frame = g::Frame::Left;
+    else if (f.frame == "right")
+        p.frame = g::Frame::Right;
+    else
+        throw UserError("invalid value '" + f.frame + "' for --frame: expected cyc, left or right");
+
+    *has_roi = !f.roi.empty();
+    if (*has_roi) {
+        std::vector<std::string> parts;
+        std::stringstream ss(f.roi);
+        std::string item;
+        while (std::getline(ss, item, ',')) parts.push_back(item);
+        if (parts.size() != 4 || f.roi.back() == ',')
+            throw UserError("invalid value '" + f.roi + "' for --roi: expected x0,y0,w,h");
+        roi->x0 = static_cast<int>(parse_int_flag("--roi x0", parts[0], 0, 1 << 20));
+        roi->y0 = static_cast<int>(parse_int_flag("--roi y0", parts[1], 0, 1 << 20));
+        roi->w = static_cast<int>(parse_int_flag("--roi w", parts[2], 1, 1 << 20));
+        roi->h = static_cast<int>(parse_int_flag("--roi h", parts[3], 1, 1 << 20));
+    }
+    try {
+        g::validate_params(p);
+    } catch (const g::ParamError& e) {
+        throw UserError(e.what());
+    }
+    return p;
+}
+
+}  // namespace imapsim

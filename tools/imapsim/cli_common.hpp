@@ -1,0 +1,74 @@
+// Shared pieces of the imapsim subcommands: algorithm flags (SPEC A.1),
+// exit codes and error reporting.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "imap/golden/params.hpp"
+
+namespace imapsim {
+
+// Exit codes (docs/errors.md).
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitMismatch = 1,  // ran, but the model's output differs from the golden
+    kExitInput = 2,     // bad flags or input files; nothing written
+    kExitFault = 3,     // the modeled machine faulted (bad address, runaway, ...)
+    kExitInternal = 4,  // unexpected internal error
+};
+
+// A user-facing error: printed as "imapsim: error: <what>" and mapped to an exit code.
+class UserError : public std::runtime_error {
+public:
+    explicit UserError(const std::string& what, int code = kExitInput)
+        : std::runtime_error(what), code_(code) {}
+    int code() const { return code_; }
+
+private:
+    int code_;
+};
+
+// Raw text of the algorithm flags, parsed after CLI11 so that errors name
+// the flag, the value and the allowed range.
+struct AlgoFlags {
+    std::string D, km, kb, gb, Wo, Wd;
+    std::string mode = "bidir";
+    std::string seed_col = "balanced";
+    std::string seed_disp = "free";
+    std::string vote = "on";
+    std::string roi;  // empty = whole image
+    std::string frame = "cyc";
+    bool fill = false;
+};
+
+// Adds --D --km --kb --gb --Wo --Wd --mode --seed-col --seed-disp --vote
+// --roi --frame --fill to a subcommand, with defaults shown in --help.
+void add_algo_flags(CLI::App* app, AlgoFlags& f);
+
+// Converts the flags to golden parameters (throws UserError naming the flag).
+// The ROI is returned separately: `has_roi` false means "whole image".
+imap::golden::Params parse_algo_flags(const AlgoFlags& f, imap::golden::Roi* roi, bool* has_roi);
+
+// Strict integer parse of a flag value; error names the flag and the range.
+long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
+                         long long hi);
+
+// Each subcommand registers itself on the app and returns a runner that is
+// called if the subcommand was selected. The runner returns the exit code.
+using Runner = std::function<int()>;
+struct Subcommand {
+    CLI::App* app = nullptr;
+    Runner run;
+};
+
+Subcommand register_golden(CLI::App& app);
+Subcommand register_eval(CLI::App& app);
+Subcommand register_synth(CLI::App& app);
+Subcommand register_run(CLI::App& app);
+Subcommand register_asm(CLI::App& app);
+Subcommand register_disasm(CLI::App& app);
+
+}  // namespace imapsim

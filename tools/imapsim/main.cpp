@@ -1,0 +1,51 @@
+// imapsim: IMAP-VISION stereo co-simulation tool. With no subcommand it runs
+// the main job: `imapsim run` on the built-in synthetic scene.
+#include <cstdio>
+#include <iostream>
+#include <vector>
+
+#include "cli_common.hpp"
+#include "imap/golden/params.hpp"
+#include "imap/vision/image_io.hpp"
+
+int main(int argc, char** argv) {
+    using namespace imapsim;
+    CLI::App app{"imapsim - IMAP-VISION stereo co-simulation (golden reference, models, tools)"};
+    app.require_subcommand(0, 1);
+    app.set_version_flag("--version", "imapsim 0.1.0");
+    std::vector<Subcommand> subs = {register_run(app), register_golden(app), register_eval(app),
+                                    register_synth(app)};
+#ifdef IMAPSIM_HAVE_ISA
+    subs.push_back(register_asm(app));
+    subs.push_back(register_disasm(app));
+#endif
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "imapsim: error: " << e.what() << " (see --help)\n";
+        return kExitInput;
+    }
+    try {
+        for (auto& s : subs)
+            if (s.app->parsed()) return s.run();
+        return subs.front().run();  // no subcommand: the main job
+    } catch (const UserError& e) {
+        std::cerr << "imapsim: error: " << e.what() << "\n";
+        return e.code();
+    } catch (const imap::vision::InputError& e) {
+        std::cerr << "imapsim: error: " << e.what() << "\n";
+        return kExitInput;
+    } catch (const imap::golden::ParamError& e) {
+        std::cerr << "imapsim: error: " << e.what() << "\n";
+        return kExitInput;
+    } catch (const std::exception& e) {
+        std::cerr << "imapsim: internal error: " << e.what() << "\n";
+        return kExitInternal;
+    }
+}
