@@ -108,7 +108,9 @@ int resolve_seed_col(const Params& p, int N) {
     return best;
 }
 
-const char* to_string(Mode m) { return m == Mode::Single ? "single" : "bidir"; }
+const char* to_string(Mode m) {
+    return m == Mode::Single ? "single" : "bidir";
+}
 
 const char* to_string(Frame f) {
     switch (f) {

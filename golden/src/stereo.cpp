@@ -40,8 +40,7 @@ struct Line {
     int gb;
 
     Line(const Params& pp, const uint8_t* l, const uint8_t* r, int n)
-        : p(pp), L(l), R(r), N(n), D(pp.D), km(pp.km), kb(pp.kb), Wo(pp.Wo), Wd(pp.Wd),
-          gb(pp.gb) {}
+        : p(pp), L(l), R(r), N(n), D(pp.D), km(pp.km), kb(pp.kb), Wo(pp.Wo), Wd(pp.Wd), gb(pp.gb) {}
 
     // Wm(i, j) with a = R[i], b = L[i + j].
     C wm(int a, int b) const {
@@ -93,9 +92,8 @@ struct Line {
 
     // Left wavefront (A.4): cost-to-go G for sites s-2 down to -1, starting
     // from site s-1 whose costs are in next[1..D] (index = level + 1, with
-    // next[0] = kInf and kInf above the last valid level, so that M from an
-    // invalid state and D from level -1 are absent). Pointer row r of tab is
-    // site r - 1. Same two-pass structure, O scanned in decreasing j.
+    // next[0] = kInf so that D from level -1 is absent). Pointer row r of
+    // tab is site r - 1. Same two-pass structure, O scanned in decreasing j.
     C left(std::vector<C>& next, std::vector<C>& cur, int s, uint8_t* tab) const {
         constexpr C kInf = CostTraits<C>::kInf;
         for (int i = s - 2; i >= -1; --i) {
@@ -104,13 +102,18 @@ struct Line {
             const int a = R[i + 1];
             const uint8_t* lp = L + i + 1;
             const C* nv = next.data();
-            C* cv = cur.data() + 1;  // cv[j] = G(i, j)
-            for (int j = 0; j <= jm; ++j) {
+            C* cv = cur.data() + 1;                     // cv[j] = G(i, j)
+            const int jm_m = std::min(jm, top(i + 1));  // M needs (i+1, j) valid
+            for (int j = 0; j <= jm_m; ++j) {
                 const C m = nv[j + 1] + wm(a, lp[j]);  // G(i+1, j) + Wm(i+1, j)
                 const C d = nv[j] + Wd;                // G(i+1, j-1) + Wd
                 const bool take_d = d < m;
                 cv[j] = take_d ? d : m;
                 fp[j] = take_d ? kD : kM;
+            }
+            if (jm > jm_m) {  // top level: M would leave the valid states, D only
+                cv[jm] = nv[jm] + Wd;
+                fp[jm] = kD;
             }
             C run = cv[jm];
             for (int j = jm - 1; j >= 0; --j) {
@@ -392,8 +395,8 @@ void fill_row(uint8_t* row, int n) {
 DisparityMap compute(const Params& p, ImageView left, ImageView right, const Roi& roi, bool fill) {
     if (left.width != right.width || left.height != right.height)
         throw ParamError("left and right images differ in size: " + std::to_string(left.width) +
-                         "x" + std::to_string(left.height) + " vs " +
-                         std::to_string(right.width) + "x" + std::to_string(right.height));
+                         "x" + std::to_string(left.height) + " vs " + std::to_string(right.width) +
+                         "x" + std::to_string(right.height));
     validate(p, roi, left.width, left.height);
     const int N = roi.w, H = roi.h;
     DisparityMap map;

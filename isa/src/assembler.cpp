@@ -72,12 +72,16 @@ size_t comment_start(const std::string& s) {
     for (size_t i = 0; i < s.size(); ++i) {
         const char c = s[i];
         if (in_str) {
-            if (c == '\\') ++i;
-            else if (c == '"') in_str = false;
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_str = false;
             continue;
         }
-        if (c == '"') in_str = true;
-        else if (c == ';') return i;
+        if (c == '"')
+            in_str = true;
+        else if (c == ';')
+            return i;
         else if (c == '#') {
             const char n = i + 1 < s.size() ? s[i + 1] : '\0';
             if (!seen || n == '\0' || n == ' ' || n == '\t' || n == '\r') return i;
@@ -212,7 +216,7 @@ struct ExprError {
 using Lookup = std::function<std::optional<int64_t>(const std::string&)>;
 
 class Expr {
-public:
+  public:
     Expr(const std::vector<Token>& t, size_t b, size_t e, const Lookup& look)
         : t_(t), pos_(b), end_(e), look_(look) {}
 
@@ -228,7 +232,7 @@ public:
     std::string undef_name;
     int undef_col = 0;
 
-private:
+  private:
     int col_at(size_t i) const {
         if (i < end_) return t_[i].col;
         if (end_ > 0 && end_ <= t_.size()) {
@@ -241,9 +245,9 @@ private:
     static int prec(const Token& tk) {
         if (tk.kind != Tok::Punct) return -1;
         static const std::pair<const char*, int> ops[] = {
-            {"||", 1}, {"&&", 2}, {"|", 3},  {"^", 4},  {"&", 5},  {"==", 6}, {"!=", 6},
-            {"<", 7},  {"<=", 7}, {">", 7},  {">=", 7}, {"<<", 8}, {">>", 8}, {"+", 9},
-            {"-", 9},  {"*", 10}, {"/", 10}, {"%", 10}};
+            {"||", 1}, {"&&", 2}, {"|", 3},  {"^", 4},  {"&", 5},  {"==", 6},
+            {"!=", 6}, {"<", 7},  {"<=", 7}, {">", 7},  {">=", 7}, {"<<", 8},
+            {">>", 8}, {"+", 9},  {"-", 9},  {"*", 10}, {"/", 10}, {"%", 10}};
         for (const auto& [s, p] : ops)
             if (tk.text == s) return p;
         return -1;
@@ -320,8 +324,7 @@ private:
         if (tk.is("(")) {
             ++pos_;
             const int64_t v = binary(0);
-            if (pos_ >= end_ || !t_[pos_].is(")"))
-                throw ExprError{col_at(pos_), "missing ')'"};
+            if (pos_ >= end_ || !t_[pos_].is(")")) throw ExprError{col_at(pos_), "missing ')'"};
             ++pos_;
             return v;
         }
@@ -334,7 +337,8 @@ private:
             char kind;
             long num;
             if (register_like(tk.text, &kind, &num))
-                throw ExprError{tk.col, "register '" + tk.text + "' cannot be used in an expression"};
+                throw ExprError{tk.col,
+                                "register '" + tk.text + "' cannot be used in an expression"};
             const std::optional<int64_t> v = look_(tk.text);
             if (v) return *v;
             if (!undef) {
@@ -369,12 +373,25 @@ struct Range {
     bool empty() const { return b >= e; }
 };
 
-enum class Slot { Imm8, Shift3, Byte2, Imm32, Off32, Target, RingK, Csh, Port, PhaseId, LdxOff, Raw64 };
+enum class Slot {
+    Imm8,
+    Shift3,
+    Byte2,
+    Imm32,
+    Off32,
+    Target,
+    RingK,
+    Csh,
+    Port,
+    PhaseId,
+    LdxOff,
+    Raw64
+};
 
 struct Stop {};  // too many errors
 
 class Assembler {
-public:
+  public:
     explicit Assembler(const AsmOptions& o) : opt_(o) {
         phases_.push_back("default");
         for (const auto& [name, value] : o.defines) {
@@ -418,7 +435,7 @@ public:
         return s.str();
     }
 
-private:
+  private:
     struct Sym {
         int64_t value;
         enum Kind { Equ, Set, Label, Define } kind;
@@ -446,9 +463,9 @@ private:
         if (l.ctx >= 0) m += " (" + contexts_[static_cast<size_t>(l.ctx)] + ")";
         diags_.push_back({files_[static_cast<size_t>(l.file)], l.line, col, m});
         if (static_cast<int>(diags_.size()) >= opt_.max_errors) {
-            diags_.push_back({files_[static_cast<size_t>(l.file)], l.line, col,
-                              "too many errors (" + std::to_string(opt_.max_errors) +
-                                  "), stopping"});
+            diags_.push_back(
+                {files_[static_cast<size_t>(l.file)], l.line, col,
+                 "too many errors (" + std::to_string(opt_.max_errors) + "), stopping"});
             throw Stop{};
         }
     }
@@ -502,13 +519,15 @@ private:
     }
 
     // Index of the line closing a block opened at `i` (.macro/.endm, .rept/.endr).
-    static size_t find_close(const std::vector<Line>& lines, size_t i, size_t end,
-                             const char* open, const char* close) {
+    static size_t find_close(const std::vector<Line>& lines, size_t i, size_t end, const char* open,
+                             const char* close) {
         int depth = 0;
         for (size_t j = i; j < end; ++j) {
             const std::string w = first_word(lines[j].text);
-            if (w == open) ++depth;
-            else if (w == close && --depth == 0) return j;
+            if (w == open)
+                ++depth;
+            else if (w == close && --depth == 0)
+                return j;
         }
         return end;
     }
@@ -554,6 +573,7 @@ private:
         auto active = [&] { return conds.empty() || conds.back().active; };
         for (size_t i = begin; i < end; ++i) {
             const Line& L = lines[i];
+            budget(L);
             const std::string w = first_word(L.text);
             if (w == ".if" || w == ".ifdef" || w == ".ifndef") {
                 if (!active()) {
@@ -638,7 +658,10 @@ private:
                         if (depth > 64) {
                             error(L, 1, "nesting too deep (64 levels of macros/.rept/.include)");
                         } else {
-                            for (int64_t k = 0; k < *n; ++k) process(lines, i + 1, j, depth + 1);
+                            for (int64_t k = 0; k < *n; ++k) {
+                                budget(L);
+                                process(lines, i + 1, j, depth + 1);
+                            }
                         }
                     }
                 }
@@ -652,6 +675,15 @@ private:
             statement(L, depth);
         }
         if (!conds.empty()) error(conds.back().where, 1, "unterminated .if (missing .endif)");
+    }
+
+    // Counts expanded lines and .rept iterations; stops a runaway expansion.
+    void budget(const Line& L) {
+        if (++lines_seen_ <= kMaxLines) return;
+        error(L, 1,
+              "more than " + std::to_string(kMaxLines) +
+                  " lines after expansion (runaway .rept or macro?)");
+        throw Stop{};
     }
 
     void define_macro(const std::vector<Line>& lines, size_t i, size_t j) {
@@ -709,8 +741,10 @@ private:
         for (size_t i = 0; i < end; ++i) {
             const char c = s[i];
             if (in_str) {
-                if (c == '\\') ++i;
-                else if (c == '"') in_str = false;
+                if (c == '\\')
+                    ++i;
+                else if (c == '"')
+                    in_str = false;
             } else if (c == '"') {
                 in_str = true;
             } else if (c == '(' || c == '[') {
@@ -947,8 +981,10 @@ private:
             return;
         }
         if (d == ".error") {
-            if (n == 1 && t[k + 1].kind == Tok::String) error(L, head.col, t[k + 1].text);
-            else error(L, head.col, ".error expects a quoted message");
+            if (n == 1 && t[k + 1].kind == Tok::String)
+                error(L, head.col, t[k + 1].text);
+            else
+                error(L, head.col, ".error expects a quoted message");
             return;
         }
         if (d == ".word") {
@@ -989,21 +1025,53 @@ private:
         };
         std::string e;
         switch (s) {
-            case Slot::Imm8: e = range(-128, 255, "immediate"); w.imm = static_cast<uint32_t>(v & 0xff); break;
-            case Slot::Shift3: e = range(0, 7, "shift count"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::Byte2: e = range(0, 3, "byte index"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::Csh: e = range(0, 31, "shift count"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::RingK: e = range(1, 65535, "hop count"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::PhaseId: e = range(0, 65535, "phase id"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::Port: e = range(0, 1, "video port"); w.rd = static_cast<uint8_t>(v); break;
-            case Slot::Imm32: e = range(INT32_MIN, UINT32_MAX, "immediate"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::Off32: e = range(INT32_MIN, INT32_MAX, "offset"); w.imm = static_cast<uint32_t>(v); break;
-            case Slot::Target: e = range(0, UINT32_MAX, "branch target"); w.imm = static_cast<uint32_t>(v); break;
+            case Slot::Imm8:
+                e = range(-128, 255, "immediate");
+                w.imm = static_cast<uint32_t>(v & 0xff);
+                break;
+            case Slot::Shift3:
+                e = range(0, 7, "shift count");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::Byte2:
+                e = range(0, 3, "byte index");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::Csh:
+                e = range(0, 31, "shift count");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::RingK:
+                e = range(1, 65535, "hop count");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::PhaseId:
+                e = range(0, 65535, "phase id");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::Port:
+                e = range(0, 1, "video port");
+                w.rd = static_cast<uint8_t>(v);
+                break;
+            case Slot::Imm32:
+                e = range(INT32_MIN, UINT32_MAX, "immediate");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::Off32:
+                e = range(INT32_MIN, INT32_MAX, "offset");
+                w.imm = static_cast<uint32_t>(v);
+                break;
+            case Slot::Target:
+                e = range(0, UINT32_MAX, "branch target");
+                w.imm = static_cast<uint32_t>(v);
+                break;
             case Slot::LdxOff:
                 e = range(kLdxOffsetMin, kLdxOffsetMax, "ldx/stx offset");
                 w.imm = (w.imm & ~kLdxOffsetMask) | (static_cast<uint32_t>(v) & kLdxOffsetMask);
                 break;
-            case Slot::Raw64: code_[idx] = static_cast<uint64_t>(v); return "";
+            case Slot::Raw64:
+                code_[idx] = static_cast<uint64_t>(v);
+                return "";
         }
         if (e.empty()) code_[idx] = w.encode();
         return e;
@@ -1193,8 +1261,8 @@ private:
             if (is_reg) {
                 if (!reg_token(L, t[k + 1], &cp, &c)) return;
                 if (!cp) {
-                    error(L, t[k + 1].col, "expected a CP register after '+', got '" +
-                                               t[k + 1].text + "'");
+                    error(L, t[k + 1].col,
+                          "expected a CP register after '+', got '" + t[k + 1].text + "'");
                     return;
                 }
                 flags |= kLdxUseCp | (uint32_t{c} << kLdxCpShift);
@@ -1216,9 +1284,12 @@ private:
 
     void set_field(size_t idx, int field, uint8_t v) {
         Word w = Word::decode(code_[idx]);
-        if (field == 1) w.rd = v;
-        else if (field == 2) w.ra = v;
-        else w.rb = v;
+        if (field == 1)
+            w.rd = v;
+        else if (field == 2)
+            w.ra = v;
+        else
+            w.rb = v;
         code_[idx] = w.encode();
     }
 
@@ -1228,8 +1299,10 @@ private:
         int depth = 0;
         size_t start = b;
         for (size_t i = b; i < t.size(); ++i) {
-            if (t[i].is("[") || t[i].is("(")) ++depth;
-            else if (t[i].is("]") || t[i].is(")")) --depth;
+            if (t[i].is("[") || t[i].is("("))
+                ++depth;
+            else if (t[i].is("]") || t[i].is(")"))
+                --depth;
             else if (t[i].is(",") && depth == 0) {
                 out.push_back({start, i});
                 start = i + 1;
@@ -1241,15 +1314,39 @@ private:
 
     static int operand_count(Format f) {
         switch (f) {
-            case Format::None: return 0;
-            case Format::R: case Format::Stat: case Format::J: case Format::Phase: return 1;
-            case Format::Rr: case Format::Ri8: case Format::Cmp: case Format::Cmpi:
-            case Format::Rc: case Format::Rk: case Format::Ld: case Format::Ldx:
-            case Format::Ci: case Format::Cc: case Format::Cmem: case Format::B1: return 2;
-            case Format::Rrr: case Format::Rri8: case Format::Rsh: case Format::Rck:
-            case Format::Xfer: case Format::Ring: case Format::Ccc: case Format::Cci:
-            case Format::Csh: case Format::Bcc: return 3;
-            case Format::Video: return 4;
+            case Format::None:
+                return 0;
+            case Format::R:
+            case Format::Stat:
+            case Format::J:
+            case Format::Phase:
+                return 1;
+            case Format::Rr:
+            case Format::Ri8:
+            case Format::Cmp:
+            case Format::Cmpi:
+            case Format::Rc:
+            case Format::Rk:
+            case Format::Ld:
+            case Format::Ldx:
+            case Format::Ci:
+            case Format::Cc:
+            case Format::Cmem:
+            case Format::B1:
+                return 2;
+            case Format::Rrr:
+            case Format::Rri8:
+            case Format::Rsh:
+            case Format::Rck:
+            case Format::Xfer:
+            case Format::Ring:
+            case Format::Ccc:
+            case Format::Cci:
+            case Format::Csh:
+            case Format::Bcc:
+                return 3;
+            case Format::Video:
+                return 4;
         }
         return 0;
     }
@@ -1281,20 +1378,63 @@ private:
         };
         auto im = [&](int i, Slot s) { imm(L, t, ops[static_cast<size_t>(i)], s, idx); };
         switch (info.format) {
-            case Format::None: break;
-            case Format::Rrr: pe(0, 1); pe(1, 2); pe(2, 3); break;
-            case Format::Rri8: pe(0, 1); pe(1, 2); im(2, Slot::Imm8); break;
-            case Format::Rr: pe(0, 1); pe(1, 2); break;
-            case Format::Ri8: pe(0, 1); im(1, Slot::Imm8); break;
-            case Format::Rsh: pe(0, 1); pe(1, 2); im(2, Slot::Shift3); break;
-            case Format::Cmp: pe(0, 2); pe(1, 3); break;
-            case Format::Cmpi: pe(0, 2); im(1, Slot::Imm8); break;
-            case Format::R: pe(0, 1); break;
-            case Format::Rc: pe(0, 1); cp(1, 2); break;
-            case Format::Rck: pe(0, 1); cp(1, 2); im(2, Slot::Byte2); break;
-            case Format::Rk: pe(0, 1); im(1, Slot::Byte2); break;
-            case Format::Ld: pe(0, 1); mem(L, t, ops[1], idx); break;
-            case Format::Ldx: pe(0, 1); memx(L, t, ops[1], idx); break;
+            case Format::None:
+                break;
+            case Format::Rrr:
+                pe(0, 1);
+                pe(1, 2);
+                pe(2, 3);
+                break;
+            case Format::Rri8:
+                pe(0, 1);
+                pe(1, 2);
+                im(2, Slot::Imm8);
+                break;
+            case Format::Rr:
+                pe(0, 1);
+                pe(1, 2);
+                break;
+            case Format::Ri8:
+                pe(0, 1);
+                im(1, Slot::Imm8);
+                break;
+            case Format::Rsh:
+                pe(0, 1);
+                pe(1, 2);
+                im(2, Slot::Shift3);
+                break;
+            case Format::Cmp:
+                pe(0, 2);
+                pe(1, 3);
+                break;
+            case Format::Cmpi:
+                pe(0, 2);
+                im(1, Slot::Imm8);
+                break;
+            case Format::R:
+                pe(0, 1);
+                break;
+            case Format::Rc:
+                pe(0, 1);
+                cp(1, 2);
+                break;
+            case Format::Rck:
+                pe(0, 1);
+                cp(1, 2);
+                im(2, Slot::Byte2);
+                break;
+            case Format::Rk:
+                pe(0, 1);
+                im(1, Slot::Byte2);
+                break;
+            case Format::Ld:
+                pe(0, 1);
+                mem(L, t, ops[1], idx);
+                break;
+            case Format::Ldx:
+                pe(0, 1);
+                memx(L, t, ops[1], idx);
+                break;
             case Format::Xfer: {
                 mem(L, t, ops[0], idx);
                 const Range e = ops[1];
@@ -1307,17 +1447,53 @@ private:
                 cp(2, 1);
                 break;
             }
-            case Format::Ring: pe(0, 1); pe(1, 2); im(2, Slot::RingK); break;
-            case Format::Stat: cp(0, 1); break;
-            case Format::Ci: cp(0, 1); im(1, Slot::Imm32); break;
-            case Format::Cc: cp(0, 1); cp(1, 2); break;
-            case Format::Ccc: cp(0, 1); cp(1, 2); cp(2, 3); break;
-            case Format::Cci: cp(0, 1); cp(1, 2); im(2, Slot::Imm32); break;
-            case Format::Csh: cp(0, 1); cp(1, 2); im(2, Slot::Csh); break;
-            case Format::Cmem: cp(0, 1); mem(L, t, ops[1], idx); break;
-            case Format::J: target(L, t, ops[0], idx); break;
-            case Format::Bcc: cp(0, 2); cp(1, 3); target(L, t, ops[2], idx); break;
-            case Format::B1: cp(0, 2); target(L, t, ops[1], idx); break;
+            case Format::Ring:
+                pe(0, 1);
+                pe(1, 2);
+                im(2, Slot::RingK);
+                break;
+            case Format::Stat:
+                cp(0, 1);
+                break;
+            case Format::Ci:
+                cp(0, 1);
+                im(1, Slot::Imm32);
+                break;
+            case Format::Cc:
+                cp(0, 1);
+                cp(1, 2);
+                break;
+            case Format::Ccc:
+                cp(0, 1);
+                cp(1, 2);
+                cp(2, 3);
+                break;
+            case Format::Cci:
+                cp(0, 1);
+                cp(1, 2);
+                im(2, Slot::Imm32);
+                break;
+            case Format::Csh:
+                cp(0, 1);
+                cp(1, 2);
+                im(2, Slot::Csh);
+                break;
+            case Format::Cmem:
+                cp(0, 1);
+                mem(L, t, ops[1], idx);
+                break;
+            case Format::J:
+                target(L, t, ops[0], idx);
+                break;
+            case Format::Bcc:
+                cp(0, 2);
+                cp(1, 3);
+                target(L, t, ops[2], idx);
+                break;
+            case Format::B1:
+                cp(0, 2);
+                target(L, t, ops[1], idx);
+                break;
             case Format::Video: {
                 im(0, Slot::Port);
                 mem(L, t, ops[1], idx);
@@ -1326,7 +1502,9 @@ private:
                     set_field(idx, 2, static_cast<uint8_t>(y | (xx << 4)));
                 break;
             }
-            case Format::Phase: im(0, Slot::PhaseId); break;
+            case Format::Phase:
+                im(0, Slot::PhaseId);
+                break;
         }
     }
 
@@ -1343,6 +1521,8 @@ private:
     std::map<std::string, uint32_t> labels_;
     std::vector<Fixup> fixups_;
     int macro_counter_ = 0;
+    static constexpr uint64_t kMaxLines = 50000000;
+    uint64_t lines_seen_ = 0;
 };
 
 }  // namespace
@@ -1355,7 +1535,7 @@ Program assemble_string(const std::string& text, const std::string& name, const 
 Program assemble_file(const std::string& path, const AsmOptions& opt) {
     std::string err;
     const auto text = Assembler::read_file(path, &err);
-    if (!text) throw AsmError({{path, 0, 0, "cannot open source file: " + err}});
+    if (!text) throw AsmError({{path, 0, 0, "cannot open source file '" + path + "': " + err}});
     Assembler a(opt);
     return a.run(*text, path);
 }

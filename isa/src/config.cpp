@@ -168,17 +168,27 @@ void MachineConfig::set(std::string_view name, std::string_view value) {
         if (x < lo || x > hi) bad(name, v, range_str(lo, hi));
         return x;
     };
-    if (name == "pes") pes = static_cast<int>(in(2, 65536));
-    else if (name == "mem_bytes") mem_bytes = static_cast<uint32_t>(in(1, 1 << 20));
-    else if (name == "ext_bytes") ext_bytes = static_cast<uint32_t>(in(0, 1 << 24));
-    else if (name == "pe_regs") pe_regs = static_cast<int>(in(1, 64));
-    else if (name == "mask_depth") mask_depth = static_cast<int>(in(1, 255));
-    else if (name == "call_depth") call_depth = static_cast<int>(in(0, 255));
-    else if (name == "watchdog_cycles") watchdog_cycles = static_cast<uint64_t>(in(1, 1ll << 62));
+    if (name == "pes")
+        pes = static_cast<int>(in(2, 65536));
+    else if (name == "mem_bytes")
+        mem_bytes = static_cast<uint32_t>(in(1, 1 << 20));
+    else if (name == "ext_bytes")
+        ext_bytes = static_cast<uint32_t>(in(0, 1 << 24));
+    else if (name == "pe_regs")
+        pe_regs = static_cast<int>(in(1, 64));
+    else if (name == "mask_depth")
+        mask_depth = static_cast<int>(in(1, 255));
+    else if (name == "call_depth")
+        call_depth = static_cast<int>(in(0, 255));
+    else if (name == "watchdog_cycles")
+        watchdog_cycles = static_cast<uint64_t>(in(1, 1ll << 62));
     else if (name == "indirect") {
-        if (v == "on" || v == "1" || v == "true") indirect = true;
-        else if (v == "off" || v == "0" || v == "false") indirect = false;
-        else bad(name, "'" + v + "'", "on|off");
+        if (v == "on" || v == "1" || v == "true")
+            indirect = true;
+        else if (v == "off" || v == "0" || v == "false")
+            indirect = false;
+        else
+            bad(name, "'" + v + "'", "on|off");
     } else if (name == "clock_mhz") {
         errno = 0;
         char* end = nullptr;

@@ -34,8 +34,12 @@ bool valid_name(const std::string& s) {
     return true;
 }
 
-std::string r(unsigned n) { return "r" + std::to_string(n); }
-std::string c(unsigned n) { return "c" + std::to_string(n); }
+std::string r(unsigned n) {
+    return "r" + std::to_string(n);
+}
+std::string c(unsigned n) {
+    return "c" + std::to_string(n);
+}
 std::string offset_suffix(int64_t off) {
     if (off > 0) return " + " + std::to_string(off);
     if (off < 0) return " - " + std::to_string(-off);
@@ -57,20 +61,41 @@ std::string format(uint64_t word, const Namer& target) {
     const std::string i32 = "#" + std::to_string(as_signed(x.imm));
     std::string o;
     switch (info.format) {
-        case Format::None: break;
-        case Format::Rrr: o = r(x.rd) + ", " + r(x.ra) + ", " + r(x.rb); break;
+        case Format::None:
+            break;
+        case Format::Rrr:
+            o = r(x.rd) + ", " + r(x.ra) + ", " + r(x.rb);
+            break;
         case Format::Rri8:
         case Format::Rsh:
-        case Format::Ring: o = r(x.rd) + ", " + r(x.ra) + ", " + i8; break;
-        case Format::Rr: o = r(x.rd) + ", " + r(x.ra); break;
+        case Format::Ring:
+            o = r(x.rd) + ", " + r(x.ra) + ", " + i8;
+            break;
+        case Format::Rr:
+            o = r(x.rd) + ", " + r(x.ra);
+            break;
         case Format::Ri8:
-        case Format::Rk: o = r(x.rd) + ", " + i8; break;
-        case Format::Cmp: o = r(x.ra) + ", " + r(x.rb); break;
-        case Format::Cmpi: o = r(x.ra) + ", " + i8; break;
-        case Format::R: o = r(x.rd); break;
-        case Format::Rc: o = r(x.rd) + ", " + c(x.ra); break;
-        case Format::Rck: o = r(x.rd) + ", " + c(x.ra) + ", " + i8; break;
-        case Format::Ld: o = r(x.rd) + ", " + mem(x.rb, x.imm); break;
+        case Format::Rk:
+            o = r(x.rd) + ", " + i8;
+            break;
+        case Format::Cmp:
+            o = r(x.ra) + ", " + r(x.rb);
+            break;
+        case Format::Cmpi:
+            o = r(x.ra) + ", " + i8;
+            break;
+        case Format::R:
+            o = r(x.rd);
+            break;
+        case Format::Rc:
+            o = r(x.rd) + ", " + c(x.ra);
+            break;
+        case Format::Rck:
+            o = r(x.rd) + ", " + c(x.ra) + ", " + i8;
+            break;
+        case Format::Ld:
+            o = r(x.rd) + ", " + mem(x.rb, x.imm);
+            break;
         case Format::Ldx: {
             o = r(x.rd) + ", [" + r(x.ra);
             if (!(x.imm & kLdxNoHigh)) o += ":" + r(x.rb);
@@ -78,22 +103,46 @@ std::string format(uint64_t word, const Namer& target) {
             o += offset_suffix(ldx_offset(x.imm)) + "]";
             break;
         }
-        case Format::Xfer: o = mem(x.rb, x.imm) + ", ext[" + c(x.ra) + "], " + c(x.rd); break;
-        case Format::Stat: o = c(x.rd); break;
-        case Format::Ci: o = c(x.rd) + ", " + i32; break;
-        case Format::Cc: o = c(x.rd) + ", " + c(x.ra); break;
-        case Format::Ccc: o = c(x.rd) + ", " + c(x.ra) + ", " + c(x.rb); break;
-        case Format::Cci: o = c(x.rd) + ", " + c(x.ra) + ", " + i32; break;
-        case Format::Csh: o = c(x.rd) + ", " + c(x.ra) + ", " + i8; break;
-        case Format::Cmem: o = c(x.rd) + ", " + mem(x.rb, x.imm); break;
-        case Format::J: o = target(x.imm); break;
-        case Format::Bcc: o = c(x.ra) + ", " + c(x.rb) + ", " + target(x.imm); break;
-        case Format::B1: o = c(x.ra) + ", " + target(x.imm); break;
+        case Format::Xfer:
+            o = mem(x.rb, x.imm) + ", ext[" + c(x.ra) + "], " + c(x.rd);
+            break;
+        case Format::Stat:
+            o = c(x.rd);
+            break;
+        case Format::Ci:
+            o = c(x.rd) + ", " + i32;
+            break;
+        case Format::Cc:
+            o = c(x.rd) + ", " + c(x.ra);
+            break;
+        case Format::Ccc:
+            o = c(x.rd) + ", " + c(x.ra) + ", " + c(x.rb);
+            break;
+        case Format::Cci:
+            o = c(x.rd) + ", " + c(x.ra) + ", " + i32;
+            break;
+        case Format::Csh:
+            o = c(x.rd) + ", " + c(x.ra) + ", " + i8;
+            break;
+        case Format::Cmem:
+            o = c(x.rd) + ", " + mem(x.rb, x.imm);
+            break;
+        case Format::J:
+            o = target(x.imm);
+            break;
+        case Format::Bcc:
+            o = c(x.ra) + ", " + c(x.rb) + ", " + target(x.imm);
+            break;
+        case Format::B1:
+            o = c(x.ra) + ", " + target(x.imm);
+            break;
         case Format::Video:
             o = "#" + std::to_string(x.rd) + ", " + mem(x.rb, x.imm) + ", " + c(x.ra & 15u) + ", " +
                 c(x.ra >> 4);
             break;
-        case Format::Phase: o = i8; break;
+        case Format::Phase:
+            o = i8;
+            break;
     }
     return o.empty() ? mn : mn + " " + o;
 }
@@ -142,7 +191,8 @@ std::string disassemble(const Program& p, const DisasmOptions& opt) {
     bool names_ok = !p.phases.empty() && p.phases[0] == "default";
     {
         std::set<std::string> seen;
-        for (const std::string& s : p.phases) names_ok = names_ok && valid_name(s) && seen.insert(s).second;
+        for (const std::string& s : p.phases)
+            names_ok = names_ok && valid_name(s) && seen.insert(s).second;
     }
 
     std::string out = "; IMAP-VISION program: " + std::to_string(n) + " instructions, " +
@@ -167,8 +217,10 @@ std::string disassemble(const Program& p, const DisasmOptions& opt) {
         }
         std::string line = "        " + text;
         if (opt.comments) {
-            if (line.size() < 48) line.resize(48, ' ');
-            else line += ' ';
+            if (line.size() < 48)
+                line.resize(48, ' ');
+            else
+                line += ' ';
             line += "; " + std::to_string(pc);
             const std::string loc = p.location(pc);
             if (!loc.empty()) line += "  " + loc;

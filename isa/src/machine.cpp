@@ -17,12 +17,25 @@ namespace {
 
 constexpr uint32_t kZeroCp = 16;    // index of the always-zero CP slot (absolute addresses)
 constexpr uint8_t kFlagNoHigh = 1;  // ldx / stx: single-byte offset register
+constexpr uint8_t kFlagPeWork = 2;  // ALU / memory / ring: counts towards PE utilisation
 
 // k is 0x00 or 0xFF: x where k is set, old elsewhere.
 inline uint8_t blend(uint8_t k, uint8_t x, uint8_t old) {
     return static_cast<uint8_t>((x & k) | (old & static_cast<uint8_t>(~k)));
 }
-inline uint8_t lane_mask(uint8_t m) { return static_cast<uint8_t>(-m); }
+inline uint8_t lane_mask(uint8_t m) {
+    return static_cast<uint8_t>(-m);
+}
+
+// Every lane loop reads and writes only element p of its P-byte rows, and two
+// rows are either the same row (rd == ra) or disjoint, so no iteration depends
+// on another: `ivdep` says exactly that and spares the run-time alias checks
+// GCC would otherwise add before vectorising.
+#if defined(__GNUC__) && !defined(__clang__)
+#define IMAP_LANE_LOOP _Pragma("GCC ivdep")
+#else
+#define IMAP_LANE_LOOP
+#endif
 
 std::string hex64(uint64_t w) {
     char b[24];
@@ -55,12 +68,14 @@ struct Exec {
         const size_t P = static_cast<size_t>(m.P_);
         uint8_t* dst = m.lanes_.data() + dst_off;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p) dst[p] = blend(lane_mask(mk[p]), src[p], dst[p]);
     }
     static void write_masked_value(Machine& m, uint32_t dst_off, uint8_t v) {
         const size_t P = static_cast<size_t>(m.P_);
         uint8_t* dst = m.lanes_.data() + dst_off;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p) dst[p] = blend(lane_mask(mk[p]), v, dst[p]);
     }
 
@@ -73,6 +88,7 @@ struct Exec {
         const uint8_t* b = L + d.b;
         uint8_t* c = m.c_;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p) {
             const sem::LaneOut o = sem::alu<O>(a[p], b[p], c[p]);
             const uint8_t k = lane_mask(mk[p]);
@@ -81,15 +97,41 @@ struct Exec {
         }
     }
 
+    // Immediate shifts: the amount becomes a compile-time constant, so the
+    // staged shift of semantics.hpp folds to a single shift.
     template <Op O>
+    static void shift_imm(Machine& m, const Decoded& d) {
+        switch (d.imm & 7) {
+            case 0:
+                return alu_rri<O, 0>(m, d);
+            case 1:
+                return alu_rri<O, 1>(m, d);
+            case 2:
+                return alu_rri<O, 2>(m, d);
+            case 3:
+                return alu_rri<O, 3>(m, d);
+            case 4:
+                return alu_rri<O, 4>(m, d);
+            case 5:
+                return alu_rri<O, 5>(m, d);
+            case 6:
+                return alu_rri<O, 6>(m, d);
+            default:
+                return alu_rri<O, 7>(m, d);
+        }
+    }
+
+    // N >= 0: the immediate is the constant N.
+    template <Op O, int N = -1>
     static void alu_rri(Machine& m, const Decoded& d) {
         const size_t P = static_cast<size_t>(m.P_);
         uint8_t* L = m.lanes_.data();
         uint8_t* dst = L + d.d;
         const uint8_t* a = L + d.a;
-        const uint8_t b = static_cast<uint8_t>(d.imm);
+        const uint8_t b = N >= 0 ? static_cast<uint8_t>(N) : static_cast<uint8_t>(d.imm);
         uint8_t* c = m.c_;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p) {
             const sem::LaneOut o = sem::alu<O>(a[p], b, c[p]);
             const uint8_t k = lane_mask(mk[p]);
@@ -106,6 +148,7 @@ struct Exec {
         const uint8_t* b = L + d.b;
         uint8_t* t = m.t_;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p)
             t[p] = blend(lane_mask(mk[p]), sem::compare<O>(a[p], b[p]), t[p]);
     }
@@ -117,6 +160,7 @@ struct Exec {
         const uint8_t b = static_cast<uint8_t>(d.imm);
         uint8_t* t = m.t_;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p)
             t[p] = blend(lane_mask(mk[p]), sem::compare<O>(a[p], b), t[p]);
     }
@@ -129,6 +173,7 @@ struct Exec {
         const uint8_t* a = L + d.a;
         const uint8_t* b = L + d.b;
         const uint8_t* mk = m.m_;
+        IMAP_LANE_LOOP
         for (size_t p = 0; p < P; ++p) {
             const uint8_t v = blend(lane_mask(sel[p]), a[p], b[p]);
             dst[p] = blend(lane_mask(mk[p]), v, dst[p]);
@@ -143,8 +188,10 @@ struct Exec {
         uint8_t* reg = m.lanes_.data() + d.d;
         const uint8_t* mk = m.m_;
         if constexpr (Store) {
+            IMAP_LANE_LOOP
             for (size_t p = 0; p < P; ++p) row[p] = blend(lane_mask(mk[p]), reg[p], row[p]);
         } else {
+            IMAP_LANE_LOOP
             for (size_t p = 0; p < P; ++p) reg[p] = blend(lane_mask(mk[p]), row[p], reg[p]);
         }
     }
@@ -169,8 +216,8 @@ struct Exec {
             if (a < 0 || a >= size)
                 m.fault(std::string(Store ? "stx" : "ldx") + ": PE " + std::to_string(p) +
                             " address " + std::to_string(a) + " out of range (local memory is " +
-                            std::to_string(size) + " bytes per PE: 0.." +
-                            std::to_string(size - 1) + ")",
+                            std::to_string(size) + " bytes per PE: 0.." + std::to_string(size - 1) +
+                            ")",
                         static_cast<int64_t>(p), a);
         }
         uint8_t* mem = m.mem_.data();
@@ -178,8 +225,10 @@ struct Exec {
         for (size_t p = 0; p < P; ++p) {
             if (!mk[p]) continue;
             const size_t cell = static_cast<size_t>(addr(p)) * P + p;
-            if constexpr (Store) mem[cell] = reg[p];
-            else reg[p] = mem[cell];
+            if constexpr (Store)
+                mem[cell] = reg[p];
+            else
+                reg[p] = mem[cell];
         }
     }
 
@@ -211,8 +260,10 @@ struct Exec {
         uint8_t* lp = m.mem_.data() + static_cast<size_t>(loc) * P;
         uint8_t* ep = m.ext_.data() + static_cast<size_t>(ext) * P;
         const size_t n = static_cast<size_t>(len) * P;
-        if constexpr (Store) std::memmove(ep, lp, n);
-        else std::memmove(lp, ep, n);
+        if constexpr (Store)
+            std::memmove(ep, lp, n);
+        else
+            std::memmove(lp, ep, n);
         m.extra_ = static_cast<uint64_t>(len) * m.cfg_.costs.xfer_per_byte;
     }
 
@@ -253,8 +304,8 @@ struct Exec {
                 m.video_->write_line(static_cast<int>(d.d), static_cast<int>(y),
                                      static_cast<int>(x), row, m.P_);
             } else {
-                m.video_->read_line(static_cast<int>(d.d), static_cast<int>(y),
-                                    static_cast<int>(x), m.scratch_, m.P_);
+                m.video_->read_line(static_cast<int>(d.d), static_cast<int>(y), static_cast<int>(x),
+                                    m.scratch_, m.P_);
                 std::memcpy(row, m.scratch_, P);
             }
         } catch (const std::exception& e) {
@@ -277,7 +328,9 @@ struct Exec {
             select(m, d, O == Op::CSEL ? m.c_ : m.t_);
         } else if constexpr (F == Format::Rrr || O == Op::ROLC || O == Op::RORC) {
             alu_rrr<O>(m, d);  // rolc / rorc: b lane unused (decoded as ra)
-        } else if constexpr (F == Format::Rri8 || F == Format::Rsh) {
+        } else if constexpr (F == Format::Rsh) {
+            shift_imm<O>(m, d);
+        } else if constexpr (F == Format::Rri8) {
             alu_rri<O>(m, d);
         } else if constexpr (F == Format::Cmp) {
             cmp_rr<O>(m, d);
@@ -299,6 +352,7 @@ struct Exec {
             uint8_t* t = m.t_;
             const uint8_t* cf = m.c_;
             const uint8_t* mk = m.m_;
+            IMAP_LANE_LOOP
             for (size_t p = 0; p < P; ++p) {
                 const uint8_t v = O == Op::TC ? cf[p] : static_cast<uint8_t>(t[p] ^ 1u);
                 t[p] = blend(lane_mask(mk[p]), v, t[p]);
@@ -319,12 +373,14 @@ struct Exec {
             ++m.msp_;
             uint8_t* mk = m.m_;
             const uint8_t* t = m.t_;
+            IMAP_LANE_LOOP
             for (size_t p = 0; p < P; ++p) mk[p] = static_cast<uint8_t>(mk[p] & t[p]);
             m.recount_active();
         } else if constexpr (O == Op::MELSE) {
             if (m.msp_ == 0) m.fault("melse: mask stack underflow (melse without mif)");
             const uint8_t* top = m.mstack_ + static_cast<size_t>(m.msp_ - 1) * P;
             uint8_t* mk = m.m_;
+            IMAP_LANE_LOOP
             for (size_t p = 0; p < P; ++p) mk[p] = static_cast<uint8_t>(top[p] & (mk[p] ^ 1u));
             m.recount_active();
         } else if constexpr (O == Op::MEND) {
@@ -346,8 +402,7 @@ struct Exec {
             const uint8_t* t = m.t_;
             const uint8_t* mk = m.m_;
             uint8_t acc = 1;
-            for (size_t p = 0; p < P; ++p)
-                acc = static_cast<uint8_t>(acc & (t[p] | (mk[p] ^ 1u)));
+            for (size_t p = 0; p < P; ++p) acc = static_cast<uint8_t>(acc & (t[p] | (mk[p] ^ 1u)));
             c[d.d] = acc;
         } else if constexpr (O == Op::VIN || O == Op::VOUT) {
             video(m, d, O == Op::VOUT);
@@ -365,14 +420,22 @@ struct Exec {
             const uint32_t a = c[d.a];
             const uint32_t b = F == Format::Ccc ? c[d.b] : static_cast<uint32_t>(d.imm);
             uint32_t r = 0;
-            if constexpr (O == Op::CADD || O == Op::CADDI) r = a + b;
-            else if constexpr (O == Op::CSUB || O == Op::CSUBI) r = a - b;
-            else if constexpr (O == Op::CAND || O == Op::CANDI) r = a & b;
-            else if constexpr (O == Op::COR || O == Op::CORI) r = a | b;
-            else if constexpr (O == Op::CXOR || O == Op::CXORI) r = a ^ b;
-            else if constexpr (O == Op::CSHLI) r = a << b;
-            else if constexpr (O == Op::CSHRI) r = a >> b;
-            else if constexpr (O == Op::CSRAI) r = (a & 0x80000000u) ? ~(~a >> b) : a >> b;
+            if constexpr (O == Op::CADD || O == Op::CADDI)
+                r = a + b;
+            else if constexpr (O == Op::CSUB || O == Op::CSUBI)
+                r = a - b;
+            else if constexpr (O == Op::CAND || O == Op::CANDI)
+                r = a & b;
+            else if constexpr (O == Op::COR || O == Op::CORI)
+                r = a | b;
+            else if constexpr (O == Op::CXOR || O == Op::CXORI)
+                r = a ^ b;
+            else if constexpr (O == Op::CSHLI)
+                r = a << b;
+            else if constexpr (O == Op::CSHRI)
+                r = a >> b;
+            else if constexpr (O == Op::CSRAI)
+                r = (a & 0x80000000u) ? ~(~a >> b) : a >> b;
             c[d.d] = r;
         } else if constexpr (O == Op::CLD || O == Op::CST) {
             const int64_t a = cpv(m, d.b) + d.imm;
@@ -381,8 +444,10 @@ struct Exec {
                             std::to_string(a) + " out of range 0.." +
                             std::to_string(kParamWords - 1),
                         Fault::kNone, a);
-            if constexpr (O == Op::CLD) c[d.d] = m.params_[static_cast<size_t>(a)];
-            else m.params_[static_cast<size_t>(a)] = c[d.d];
+            if constexpr (O == Op::CLD)
+                c[d.d] = m.params_[static_cast<size_t>(a)];
+            else
+                m.params_[static_cast<size_t>(a)] = c[d.d];
         } else if constexpr (O == Op::JMP) {
             branch(m, d, true);
         } else if constexpr (O == Op::BEQ) {
@@ -443,7 +508,8 @@ void ImageVideoPort::make_output(int port, int width, int height) {
 }
 
 void ImageVideoPort::read_line(int port, int y, int x0, uint8_t* dst, int n) {
-    if (port < 0 || port > 1) throw std::out_of_range("no video input port " + std::to_string(port));
+    if (port < 0 || port > 1)
+        throw std::out_of_range("no video input port " + std::to_string(port));
     const Image& im = input[port];
     if (y < 0 || y >= im.height)
         throw std::out_of_range("line outside input image " + std::to_string(port) + " (" +
@@ -456,7 +522,8 @@ void ImageVideoPort::read_line(int port, int y, int x0, uint8_t* dst, int n) {
 }
 
 void ImageVideoPort::write_line(int port, int y, int x0, const uint8_t* src, int n) {
-    if (port < 0 || port > 1) throw std::out_of_range("no video output port " + std::to_string(port));
+    if (port < 0 || port > 1)
+        throw std::out_of_range("no video output port " + std::to_string(port));
     Image& im = output[port];
     if (y < 0 || y >= im.height)
         throw std::out_of_range("line outside output image " + std::to_string(port) + " (" +
@@ -498,8 +565,8 @@ Machine::Machine(const MachineConfig& cfg) : cfg_(cfg) {
 
 size_t Machine::lane_off(int r) const {
     if (r < 0 || static_cast<size_t>(r) >= NR_)
-        throw std::out_of_range("PE register r" + std::to_string(r) + " does not exist (pe_regs = " +
-                                std::to_string(NR_) + ")");
+        throw std::out_of_range("PE register r" + std::to_string(r) +
+                                " does not exist (pe_regs = " + std::to_string(NR_) + ")");
     return static_cast<size_t>(r) * static_cast<size_t>(P_);
 }
 
@@ -528,10 +595,10 @@ void Machine::load(const Program& prog) {
         d.imm = as_signed(x.imm);
         auto pe = [&](uint8_t r, const char* field) -> uint32_t {
             if (r >= NR_)
-                throw LoadError(where() + mn + ": register r" + std::to_string(r) + " (field " +
-                                    field + ") does not exist on this machine (pe_regs = " +
-                                    std::to_string(NR_) + ")",
-                                pc);
+                throw LoadError(
+                    where() + mn + ": register r" + std::to_string(r) + " (field " + field +
+                        ") does not exist on this machine (pe_regs = " + std::to_string(NR_) + ")",
+                    pc);
             return static_cast<uint32_t>(r) * static_cast<uint32_t>(P_);
         };
         auto base = [](uint8_t r) { return r == kNoBase ? kZeroCp : uint32_t{r}; };
@@ -543,8 +610,13 @@ void Machine::load(const Program& prog) {
             return x.imm;
         };
         switch (info.format) {
-            case Format::None: break;
-            case Format::Rrr: d.d = pe(x.rd, "rd"); d.a = pe(x.ra, "ra"); d.b = pe(x.rb, "rb"); break;
+            case Format::None:
+                break;
+            case Format::Rrr:
+                d.d = pe(x.rd, "rd");
+                d.a = pe(x.ra, "ra");
+                d.b = pe(x.rb, "rb");
+                break;
             case Format::Rri8:
             case Format::Rsh:
             case Format::Rr:
@@ -555,12 +627,25 @@ void Machine::load(const Program& prog) {
                 break;
             case Format::Ri8:
             case Format::R:
-            case Format::Rk: d.d = pe(x.rd, "rd"); break;
-            case Format::Cmp: d.a = pe(x.ra, "ra"); d.b = pe(x.rb, "rb"); break;
-            case Format::Cmpi: d.a = pe(x.ra, "ra"); break;
+            case Format::Rk:
+                d.d = pe(x.rd, "rd");
+                break;
+            case Format::Cmp:
+                d.a = pe(x.ra, "ra");
+                d.b = pe(x.rb, "rb");
+                break;
+            case Format::Cmpi:
+                d.a = pe(x.ra, "ra");
+                break;
             case Format::Rc:
-            case Format::Rck: d.d = pe(x.rd, "rd"); d.a = x.ra; break;
-            case Format::Ld: d.d = pe(x.rd, "rd"); d.b = base(x.rb); break;
+            case Format::Rck:
+                d.d = pe(x.rd, "rd");
+                d.a = x.ra;
+                break;
+            case Format::Ld:
+                d.d = pe(x.rd, "rd");
+                d.b = base(x.rb);
+                break;
             case Format::Ldx:
                 if (!cfg_.indirect)
                     throw LoadError(where() + mn +
@@ -569,48 +654,98 @@ void Machine::load(const Program& prog) {
                                     pc);
                 d.d = pe(x.rd, "rd");
                 d.a = pe(x.ra, "ra");
-                if (x.imm & kLdxNoHigh) d.flags |= kFlagNoHigh;
-                else d.b = pe(x.rb, "rb");
+                if (x.imm & kLdxNoHigh)
+                    d.flags |= kFlagNoHigh;
+                else
+                    d.b = pe(x.rb, "rb");
                 d.aux = (x.imm & kLdxUseCp) ? (x.imm >> kLdxCpShift) & 15u : kZeroCp;
                 d.imm = ldx_offset(x.imm);
                 break;
-            case Format::Xfer: d.d = x.rd; d.a = x.ra; d.b = base(x.rb); break;
+            case Format::Xfer:
+                d.d = x.rd;
+                d.a = x.ra;
+                d.b = base(x.rb);
+                break;
             case Format::Stat:
-            case Format::Ci: d.d = x.rd; break;
+            case Format::Ci:
+                d.d = x.rd;
+                break;
             case Format::Cc:
             case Format::Cci:
-            case Format::Csh: d.d = x.rd; d.a = x.ra; break;
-            case Format::Ccc: d.d = x.rd; d.a = x.ra; d.b = x.rb; break;
-            case Format::Cmem: d.d = x.rd; d.b = base(x.rb); break;
-            case Format::J: d.aux = target(); break;
-            case Format::Bcc: d.a = x.ra; d.b = x.rb; d.aux = target(); break;
-            case Format::B1: d.a = x.ra; d.aux = target(); break;
-            case Format::Video: d.d = x.rd; d.aux = x.ra; d.b = base(x.rb); break;
+            case Format::Csh:
+                d.d = x.rd;
+                d.a = x.ra;
+                break;
+            case Format::Ccc:
+                d.d = x.rd;
+                d.a = x.ra;
+                d.b = x.rb;
+                break;
+            case Format::Cmem:
+                d.d = x.rd;
+                d.b = base(x.rb);
+                break;
+            case Format::J:
+                d.aux = target();
+                break;
+            case Format::Bcc:
+                d.a = x.ra;
+                d.b = x.rb;
+                d.aux = target();
+                break;
+            case Format::B1:
+                d.a = x.ra;
+                d.aux = target();
+                break;
+            case Format::Video:
+                d.d = x.rd;
+                d.aux = x.ra;
+                d.b = base(x.rb);
+                break;
             case Format::Phase:
                 if (x.imm >= n_phases)
                     throw LoadError(where() + "phase id " + std::to_string(x.imm) +
-                                        " has no name in the program (" +
-                                        std::to_string(n_phases) + " phases)",
+                                        " has no name in the program (" + std::to_string(n_phases) +
+                                        " phases)",
                                     pc);
                 break;
         }
         switch (info.cost_class) {
-            case CostClass::Alu: d.cost = k.alu; break;
-            case CostClass::Mem: d.cost = k.mem; break;
-            case CostClass::Indirect: d.cost = uint64_t{k.mem} + k.indirect_extra; break;
-            case CostClass::Ring: d.cost = uint64_t{x.imm} * k.ring_hop; break;
-            case CostClass::Mask: d.cost = k.mask; break;
-            case CostClass::Status: d.cost = k.status; break;
-            case CostClass::Cp: d.cost = k.cp; break;
-            case CostClass::Video: d.cost = k.video_line; break;
-            case CostClass::Xfer: d.cost = k.xfer_setup; break;
-            case CostClass::Phase: d.cost = 0; break;
+            case CostClass::Alu:
+                d.cost = k.alu;
+                break;
+            case CostClass::Mem:
+                d.cost = k.mem;
+                break;
+            case CostClass::Indirect:
+                d.cost = uint64_t{k.mem} + k.indirect_extra;
+                break;
+            case CostClass::Ring:
+                d.cost = uint64_t{x.imm} * k.ring_hop;
+                break;
+            case CostClass::Mask:
+                d.cost = k.mask;
+                break;
+            case CostClass::Status:
+                d.cost = k.status;
+                break;
+            case CostClass::Cp:
+                d.cost = k.cp;
+                break;
+            case CostClass::Video:
+                d.cost = k.video_line;
+                break;
+            case CostClass::Xfer:
+                d.cost = k.xfer_setup;
+                break;
+            case CostClass::Phase:
+                d.cost = 0;
+                break;
         }
         const CostClass cc = info.cost_class;
-        d.flags |= (cc == CostClass::Alu || cc == CostClass::Mem || cc == CostClass::Indirect ||
-                    cc == CostClass::Ring)
-                       ? 2
-                       : 0;
+        if (cc == CostClass::Alu || cc == CostClass::Mem || cc == CostClass::Indirect ||
+            cc == CostClass::Ring)
+            d.flags |= kFlagPeWork;
         code.push_back(d);
     }
     Decoded end;
@@ -674,11 +809,12 @@ inline void Machine::exec_one() {
     stats_.class_cycles[d.cls] += c;
     ++stats_.op_counts[d.op];
     ++stats_.instructions;
-    const uint64_t pe_c = (d.flags & 2) ? c : 0;
+    const uint64_t pe_c = (d.flags & kFlagPeWork) ? c : 0;
     stats_.pe_cycles += pe_c;
     stats_.active_lane_cycles += pe_c * static_cast<uint64_t>(active_);
     pc_ = next_pc_;
-    if constexpr (Traced) observer_->on_instruction(*this, TraceEvent{pc, prog_.code[pc], before, cycles_});
+    if constexpr (Traced)
+        observer_->on_instruction(*this, TraceEvent{pc, prog_.code[pc], before, cycles_});
 }
 
 template <bool Traced>
@@ -699,12 +835,13 @@ RunResult Machine::run(uint64_t max_cycles) {
 StepResult Machine::step() {
     if (halted_) return {true, pc_, 0};
     if (cycles_ >= cfg_.watchdog_cycles)
-        fault("watchdog: no halt after " + std::to_string(cycles_) +
-              " cycles (watchdog_cycles = " + std::to_string(cfg_.watchdog_cycles) +
-              "); runaway program?");
+        fault("watchdog: no halt after " + std::to_string(cycles_) + " cycles (watchdog_cycles = " +
+              std::to_string(cfg_.watchdog_cycles) + "); runaway program?");
     const uint64_t before = cycles_;
-    if (observer_) exec_one<true>();
-    else exec_one<false>();
+    if (observer_)
+        exec_one<true>();
+    else
+        exec_one<false>();
     return {halted_, pc_, cycles_ - before};
 }
 
@@ -757,19 +894,23 @@ void Machine::ext_write(int pe, uint32_t addr, uint8_t v) {
     ext_[static_cast<size_t>(addr) * static_cast<size_t>(P_) + static_cast<size_t>(pe)] = v;
 }
 uint32_t Machine::cp(int i) const {
-    if (i < 0 || i >= kCpRegs) throw std::out_of_range("CP register c" + std::to_string(i) + " does not exist (c0..c15)");
+    if (i < 0 || i >= kCpRegs)
+        throw std::out_of_range("CP register c" + std::to_string(i) + " does not exist (c0..c15)");
     return creg_[static_cast<size_t>(i)];
 }
 void Machine::set_cp(int i, uint32_t v) {
-    if (i < 0 || i >= kCpRegs) throw std::out_of_range("CP register c" + std::to_string(i) + " does not exist (c0..c15)");
+    if (i < 0 || i >= kCpRegs)
+        throw std::out_of_range("CP register c" + std::to_string(i) + " does not exist (c0..c15)");
     creg_[static_cast<size_t>(i)] = v;
 }
 uint32_t Machine::param(int i) const {
-    if (i < 0 || i >= kParamWords) throw std::out_of_range("param word " + std::to_string(i) + " out of range 0..255");
+    if (i < 0 || i >= kParamWords)
+        throw std::out_of_range("param word " + std::to_string(i) + " out of range 0..255");
     return params_[static_cast<size_t>(i)];
 }
 void Machine::set_param(int i, uint32_t v) {
-    if (i < 0 || i >= kParamWords) throw std::out_of_range("param word " + std::to_string(i) + " out of range 0..255");
+    if (i < 0 || i >= kParamWords)
+        throw std::out_of_range("param word " + std::to_string(i) + " out of range 0..255");
     params_[static_cast<size_t>(i)] = v;
 }
 

@@ -33,21 +33,33 @@ const std::array<const OpInfo*, 256>& by_code() {
 
 const char* to_string(CostClass c) {
     switch (c) {
-        case CostClass::Alu: return "alu";
-        case CostClass::Mem: return "mem";
-        case CostClass::Indirect: return "indirect";
-        case CostClass::Ring: return "ring";
-        case CostClass::Mask: return "mask";
-        case CostClass::Status: return "status";
-        case CostClass::Cp: return "cp";
-        case CostClass::Video: return "video";
-        case CostClass::Xfer: return "xfer";
-        case CostClass::Phase: return "phase";
+        case CostClass::Alu:
+            return "alu";
+        case CostClass::Mem:
+            return "mem";
+        case CostClass::Indirect:
+            return "indirect";
+        case CostClass::Ring:
+            return "ring";
+        case CostClass::Mask:
+            return "mask";
+        case CostClass::Status:
+            return "status";
+        case CostClass::Cp:
+            return "cp";
+        case CostClass::Video:
+            return "video";
+        case CostClass::Xfer:
+            return "xfer";
+        case CostClass::Phase:
+            return "phase";
     }
     return "?";
 }
 
-const OpInfo* op_info(uint8_t code) { return by_code()[code]; }
+const OpInfo* op_info(uint8_t code) {
+    return by_code()[code];
+}
 
 const OpInfo* op_by_name(std::string_view mnemonic) {
     for (const OpInfo& i : table())
@@ -55,38 +67,68 @@ const OpInfo* op_by_name(std::string_view mnemonic) {
     return nullptr;
 }
 
-const std::vector<OpInfo>& all_ops() { return table(); }
+const std::vector<OpInfo>& all_ops() {
+    return table();
+}
 
 const char* operand_syntax(Format f) {
     switch (f) {
-        case Format::None: return "";
-        case Format::Rrr: return "rd, ra, rb";
-        case Format::Rri8: return "rd, ra, #imm8";
-        case Format::Rr: return "rd, ra";
-        case Format::Ri8: return "rd, #imm8";
-        case Format::Rsh: return "rd, ra, #n";
-        case Format::Cmp: return "ra, rb";
-        case Format::Cmpi: return "ra, #imm8";
-        case Format::R: return "rd";
-        case Format::Rc: return "rd, cA";
-        case Format::Rck: return "rd, cA, #k";
-        case Format::Rk: return "rd, #k";
-        case Format::Ld: return "rd, [cB + off]";
-        case Format::Ldx: return "rd, [ra:rb + cN + off]";
-        case Format::Xfer: return "[cB + off], ext[cA], cD";
-        case Format::Ring: return "rd, ra, #k";
-        case Format::Stat: return "cD";
-        case Format::Ci: return "cD, #imm32";
-        case Format::Cc: return "cD, cA";
-        case Format::Ccc: return "cD, cA, cB";
-        case Format::Cci: return "cD, cA, #imm32";
-        case Format::Csh: return "cD, cA, #n";
-        case Format::Cmem: return "cD, [cB + off]";
-        case Format::J: return "target";
-        case Format::Bcc: return "cA, cB, target";
-        case Format::B1: return "cA, target";
-        case Format::Video: return "#port, [cB + off], cY, cX";
-        case Format::Phase: return "#id";
+        case Format::None:
+            return "";
+        case Format::Rrr:
+            return "rd, ra, rb";
+        case Format::Rri8:
+            return "rd, ra, #imm8";
+        case Format::Rr:
+            return "rd, ra";
+        case Format::Ri8:
+            return "rd, #imm8";
+        case Format::Rsh:
+            return "rd, ra, #n";
+        case Format::Cmp:
+            return "ra, rb";
+        case Format::Cmpi:
+            return "ra, #imm8";
+        case Format::R:
+            return "rd";
+        case Format::Rc:
+            return "rd, cA";
+        case Format::Rck:
+            return "rd, cA, #k";
+        case Format::Rk:
+            return "rd, #k";
+        case Format::Ld:
+            return "rd, [cB + off]";
+        case Format::Ldx:
+            return "rd, [ra:rb + cN + off]";
+        case Format::Xfer:
+            return "[cB + off], ext[cA], cD";
+        case Format::Ring:
+            return "rd, ra, #k";
+        case Format::Stat:
+            return "cD";
+        case Format::Ci:
+            return "cD, #imm32";
+        case Format::Cc:
+            return "cD, cA";
+        case Format::Ccc:
+            return "cD, cA, cB";
+        case Format::Cci:
+            return "cD, cA, #imm32";
+        case Format::Csh:
+            return "cD, cA, #n";
+        case Format::Cmem:
+            return "cD, [cB + off]";
+        case Format::J:
+            return "target";
+        case Format::Bcc:
+            return "cA, cB, target";
+        case Format::B1:
+            return "cA, target";
+        case Format::Video:
+            return "#port, [cB + off], cY, cX";
+        case Format::Phase:
+            return "#id";
     }
     return "?";
 }
@@ -110,13 +152,13 @@ std::string check_word(uint64_t w) {
     };
     auto pe = [&](const char* f, uint8_t v) {
         if (why.empty() && v >= kMaxPeRegs)
-            why = mn + ": field " + f + " = " + std::to_string(v) +
-                  " is not a PE register (r0..r" + std::to_string(kMaxPeRegs - 1) + ")";
+            why = mn + ": field " + f + " = " + std::to_string(v) + " is not a PE register (r0..r" +
+                  std::to_string(kMaxPeRegs - 1) + ")";
     };
     auto cp = [&](const char* f, uint8_t v) {
         if (why.empty() && v >= kCpRegs)
-            why = mn + ": field " + f + " = " + std::to_string(v) +
-                  " is not a CP register (c0..c15)";
+            why =
+                mn + ": field " + f + " = " + std::to_string(v) + " is not a CP register (c0..c15)";
     };
     auto base = [&](const char* f, uint8_t v) {
         if (why.empty() && v >= kCpRegs && v != kNoBase)
@@ -129,76 +171,233 @@ std::string check_word(uint64_t w) {
                   std::to_string(lo) + ".." + std::to_string(hi);
     };
     switch (info->format) {
-        case Format::None: zero("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Rrr: pe("rd", x.rd); pe("ra", x.ra); pe("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Rri8: pe("rd", x.rd); pe("ra", x.ra); zero("rb", x.rb); imm(0, 255); break;
-        case Format::Rr: pe("rd", x.rd); pe("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Ri8: pe("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); imm(0, 255); break;
-        case Format::Rsh: pe("rd", x.rd); pe("ra", x.ra); zero("rb", x.rb); imm(0, 7); break;
-        case Format::Cmp: zero("rd", x.rd); pe("ra", x.ra); pe("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Cmpi: zero("rd", x.rd); pe("ra", x.ra); zero("rb", x.rb); imm(0, 255); break;
-        case Format::R: pe("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Rc: pe("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Rck: pe("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); imm(0, 3); break;
-        case Format::Rk: pe("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); imm(0, 3); break;
-        case Format::Ld: pe("rd", x.rd); zero("ra", x.ra); base("rb", x.rb); break;
+        case Format::None:
+            zero("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Rrr:
+            pe("rd", x.rd);
+            pe("ra", x.ra);
+            pe("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Rri8:
+            pe("rd", x.rd);
+            pe("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 255);
+            break;
+        case Format::Rr:
+            pe("rd", x.rd);
+            pe("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Ri8:
+            pe("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 255);
+            break;
+        case Format::Rsh:
+            pe("rd", x.rd);
+            pe("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 7);
+            break;
+        case Format::Cmp:
+            zero("rd", x.rd);
+            pe("ra", x.ra);
+            pe("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Cmpi:
+            zero("rd", x.rd);
+            pe("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 255);
+            break;
+        case Format::R:
+            pe("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Rc:
+            pe("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Rck:
+            pe("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 3);
+            break;
+        case Format::Rk:
+            pe("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 3);
+            break;
+        case Format::Ld:
+            pe("rd", x.rd);
+            zero("ra", x.ra);
+            base("rb", x.rb);
+            break;
         case Format::Ldx:
             pe("rd", x.rd);
             pe("ra", x.ra);
-            if (x.imm & kLdxNoHigh) zero("rb", x.rb);
-            else pe("rb", x.rb);
+            if (x.imm & kLdxNoHigh)
+                zero("rb", x.rb);
+            else
+                pe("rb", x.rb);
             zero("imm bits 30..31", x.imm >> 30);
             if (!(x.imm & kLdxUseCp)) zero("imm bits 24..27 (no CP register)", (x.imm >> 24) & 15);
             break;
-        case Format::Xfer: cp("rd", x.rd); cp("ra", x.ra); base("rb", x.rb); break;
-        case Format::Ring: pe("rd", x.rd); pe("ra", x.ra); zero("rb", x.rb); imm(1, 65535); break;
-        case Format::Stat: cp("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Ci: cp("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); break;
-        case Format::Cc: cp("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Ccc: cp("rd", x.rd); cp("ra", x.ra); cp("rb", x.rb); zero("imm", x.imm); break;
-        case Format::Cci: cp("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); break;
-        case Format::Csh: cp("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); imm(0, 31); break;
-        case Format::Cmem: cp("rd", x.rd); zero("ra", x.ra); base("rb", x.rb); break;
-        case Format::J: zero("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); break;
-        case Format::Bcc: zero("rd", x.rd); cp("ra", x.ra); cp("rb", x.rb); break;
-        case Format::B1: zero("rd", x.rd); cp("ra", x.ra); zero("rb", x.rb); break;
+        case Format::Xfer:
+            cp("rd", x.rd);
+            cp("ra", x.ra);
+            base("rb", x.rb);
+            break;
+        case Format::Ring:
+            pe("rd", x.rd);
+            pe("ra", x.ra);
+            zero("rb", x.rb);
+            imm(1, 65535);
+            break;
+        case Format::Stat:
+            cp("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Ci:
+            cp("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            break;
+        case Format::Cc:
+            cp("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Ccc:
+            cp("rd", x.rd);
+            cp("ra", x.ra);
+            cp("rb", x.rb);
+            zero("imm", x.imm);
+            break;
+        case Format::Cci:
+            cp("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            break;
+        case Format::Csh:
+            cp("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 31);
+            break;
+        case Format::Cmem:
+            cp("rd", x.rd);
+            zero("ra", x.ra);
+            base("rb", x.rb);
+            break;
+        case Format::J:
+            zero("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            break;
+        case Format::Bcc:
+            zero("rd", x.rd);
+            cp("ra", x.ra);
+            cp("rb", x.rb);
+            break;
+        case Format::B1:
+            zero("rd", x.rd);
+            cp("ra", x.ra);
+            zero("rb", x.rb);
+            break;
         case Format::Video:
             if (x.rd > 1) why = mn + ": video port " + std::to_string(x.rd) + " out of range 0..1";
             base("rb", x.rb);
             break;
-        case Format::Phase: zero("rd", x.rd); zero("ra", x.ra); zero("rb", x.rb); imm(0, 65535); break;
+        case Format::Phase:
+            zero("rd", x.rd);
+            zero("ra", x.ra);
+            zero("rb", x.rb);
+            imm(0, 65535);
+            break;
     }
     return why;
 }
 
 namespace sem {
 
+#define IMAP_SEM_ALU(id) \
+    case Op::id:         \
+        return alu<Op::id>(a, b, c)
+#define IMAP_SEM_CMP(id) \
+    case Op::id:         \
+        return compare<Op::id>(a, b)
+
 LaneOut alu_lane(Op o, uint8_t a, uint8_t b, uint8_t c) {
     switch (o) {
-#define IMAP_SEM_CASE(id) \
-    case Op::id: return alu<Op::id>(a, b, c);
-        IMAP_SEM_CASE(ADD) IMAP_SEM_CASE(ADC) IMAP_SEM_CASE(SUB) IMAP_SEM_CASE(SBC)
-        IMAP_SEM_CASE(AND) IMAP_SEM_CASE(OR) IMAP_SEM_CASE(XOR) IMAP_SEM_CASE(MIN)
-        IMAP_SEM_CASE(MAX) IMAP_SEM_CASE(ADDI) IMAP_SEM_CASE(ADCI) IMAP_SEM_CASE(SUBI)
-        IMAP_SEM_CASE(SBCI) IMAP_SEM_CASE(ANDI) IMAP_SEM_CASE(ORI) IMAP_SEM_CASE(XORI)
-        IMAP_SEM_CASE(MINI) IMAP_SEM_CASE(MAXI) IMAP_SEM_CASE(SHLI) IMAP_SEM_CASE(SHRI)
-        IMAP_SEM_CASE(ROLC) IMAP_SEM_CASE(RORC) IMAP_SEM_CASE(SHLV) IMAP_SEM_CASE(SHRV)
-#undef IMAP_SEM_CASE
-        default: return {a, c};
+        IMAP_SEM_ALU(ADD);
+        IMAP_SEM_ALU(ADC);
+        IMAP_SEM_ALU(SUB);
+        IMAP_SEM_ALU(SBC);
+        IMAP_SEM_ALU(AND);
+        IMAP_SEM_ALU(OR);
+        IMAP_SEM_ALU(XOR);
+        IMAP_SEM_ALU(MIN);
+        IMAP_SEM_ALU(MAX);
+        IMAP_SEM_ALU(ADDI);
+        IMAP_SEM_ALU(ADCI);
+        IMAP_SEM_ALU(SUBI);
+        IMAP_SEM_ALU(SBCI);
+        IMAP_SEM_ALU(ANDI);
+        IMAP_SEM_ALU(ORI);
+        IMAP_SEM_ALU(XORI);
+        IMAP_SEM_ALU(MINI);
+        IMAP_SEM_ALU(MAXI);
+        IMAP_SEM_ALU(SHLI);
+        IMAP_SEM_ALU(SHRI);
+        IMAP_SEM_ALU(ROLC);
+        IMAP_SEM_ALU(RORC);
+        IMAP_SEM_ALU(SHLV);
+        IMAP_SEM_ALU(SHRV);
+        default:
+            return {a, c};
     }
 }
 
 uint8_t compare_lane(Op o, uint8_t a, uint8_t b) {
     switch (o) {
-#define IMAP_SEM_CASE(id) \
-    case Op::id: return compare<Op::id>(a, b);
-        IMAP_SEM_CASE(CEQ) IMAP_SEM_CASE(CNE) IMAP_SEM_CASE(CLTU) IMAP_SEM_CASE(CLEU)
-        IMAP_SEM_CASE(CGTU) IMAP_SEM_CASE(CGEU) IMAP_SEM_CASE(CEQI) IMAP_SEM_CASE(CNEI)
-        IMAP_SEM_CASE(CLTUI) IMAP_SEM_CASE(CLEUI) IMAP_SEM_CASE(CGTUI) IMAP_SEM_CASE(CGEUI)
-#undef IMAP_SEM_CASE
-        default: return 0;
+        IMAP_SEM_CMP(CEQ);
+        IMAP_SEM_CMP(CNE);
+        IMAP_SEM_CMP(CLTU);
+        IMAP_SEM_CMP(CLEU);
+        IMAP_SEM_CMP(CGTU);
+        IMAP_SEM_CMP(CGEU);
+        IMAP_SEM_CMP(CEQI);
+        IMAP_SEM_CMP(CNEI);
+        IMAP_SEM_CMP(CLTUI);
+        IMAP_SEM_CMP(CLEUI);
+        IMAP_SEM_CMP(CGTUI);
+        IMAP_SEM_CMP(CGEUI);
+        default:
+            return 0;
     }
 }
+
+#undef IMAP_SEM_ALU
+#undef IMAP_SEM_CMP
 
 }  // namespace sem
 }  // namespace imap::isa

@@ -21,7 +21,8 @@ std::string Program::phase_name(uint32_t id) const {
 
 bool Program::same_map(const Program& o) const {
     for (size_t i = 0; i < source_map.size(); ++i)
-        if (source_map[i].file != o.source_map[i].file || source_map[i].line != o.source_map[i].line)
+        if (source_map[i].file != o.source_map[i].file ||
+            source_map[i].line != o.source_map[i].line)
             return false;
     return true;
 }
@@ -65,8 +66,8 @@ struct Reader {
     void need(size_t n, const char* what) const {
         if (end - pos < n)
             fail("truncated: " + std::string(what) + " needs " + std::to_string(n) +
-                 " bytes at offset " + std::to_string(pos) + ", only " +
-                 std::to_string(end - pos) + " left");
+                 " bytes at offset " + std::to_string(pos) + ", only " + std::to_string(end - pos) +
+                 " left");
     }
     uint32_t u32(const char* what) {
         need(4, what);
@@ -94,7 +95,8 @@ struct Reader {
     }
     uint32_t count(const char* what, uint32_t max, size_t min_each) {
         const uint32_t n = u32(what);
-        if (n > max) fail(std::string(what) + " " + std::to_string(n) + " exceeds " + std::to_string(max));
+        if (n > max)
+            fail(std::string(what) + " " + std::to_string(n) + " exceeds " + std::to_string(max));
         if (static_cast<uint64_t>(n) * min_each > end - pos)
             fail("truncated: " + std::to_string(n) + " " + what + " need at least " +
                  std::to_string(static_cast<uint64_t>(n) * min_each) + " bytes, only " +
@@ -106,8 +108,8 @@ struct Reader {
 }  // namespace
 
 std::vector<uint8_t> serialize(const Program& p, bool with_source_map) {
-    const bool map = with_source_map && !p.source_map.empty() &&
-                     p.source_map.size() == p.code.size();
+    const bool map =
+        with_source_map && !p.source_map.empty() && p.source_map.size() == p.code.size();
     Writer w;
     w.out.insert(w.out.end(), kProgramMagic, kProgramMagic + 8);
     w.u32(kProgramVersion);
@@ -154,7 +156,8 @@ Program deserialize(const std::vector<uint8_t>& in, const std::string& name) {
     const uint32_t n_phases = r.u32("phase count");
     const uint32_t n_symbols = r.u32("symbol count");
     const uint32_t n_files = r.u32("file count");
-    if (n_code > kMaxCode) r.fail("code count " + std::to_string(n_code) + " exceeds " + std::to_string(kMaxCode));
+    if (n_code > kMaxCode)
+        r.fail("code count " + std::to_string(n_code) + " exceeds " + std::to_string(kMaxCode));
     if (n_phases > kMaxCount || n_symbols > kMaxCount || n_files > kMaxCount)
         r.fail("implausible table sizes (phases " + std::to_string(n_phases) + ", symbols " +
                std::to_string(n_symbols) + ", files " + std::to_string(n_files) + ")");
@@ -167,7 +170,8 @@ Program deserialize(const std::vector<uint8_t>& in, const std::string& name) {
     for (uint32_t i = 0; i < n_symbols; ++i) {
         std::string s = r.str("symbol name");
         const uint32_t pc = r.u32("symbol value");
-        if (pc > n_code) r.fail("symbol '" + s + "' at PC " + std::to_string(pc) + " beyond the code");
+        if (pc > n_code)
+            r.fail("symbol '" + s + "' at PC " + std::to_string(pc) + " beyond the code");
         p.symbols[s] = pc;
     }
     if (flags & 1) {
@@ -189,8 +193,7 @@ Program deserialize(const std::vector<uint8_t>& in, const std::string& name) {
         r.fail(std::to_string(r.end - r.pos) + " unexpected bytes after the last section");
     uint32_t stored = 0;
     for (int i = 0; i < 4; ++i) stored |= uint32_t{in[r.end + i]} << (8 * i);
-    if (stored != fnv1a(in.data(), r.end))
-        r.fail("checksum mismatch (file corrupted)");
+    if (stored != fnv1a(in.data(), r.end)) r.fail("checksum mismatch (file corrupted)");
     return p;
 }
 
@@ -200,7 +203,8 @@ void save_program(const Program& p, const std::string& path, bool with_source_ma
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
         if (!f) throw FormatError("cannot write '" + tmp + "': " + std::strerror(errno));
-        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        f.write(reinterpret_cast<const char*>(bytes.data()),
+                static_cast<std::streamsize>(bytes.size()));
         f.flush();
         if (!f) {
             std::remove(tmp.c_str());
@@ -217,7 +221,8 @@ void save_program(const Program& p, const std::string& path, bool with_source_ma
 Program load_program(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) throw FormatError("cannot open program file '" + path + "': " + std::strerror(errno));
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)),
+                               std::istreambuf_iterator<char>());
     if (f.bad()) throw FormatError("cannot read program file '" + path + "'");
     return deserialize(bytes, path);
 }

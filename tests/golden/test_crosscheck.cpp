@@ -349,27 +349,42 @@ BOOST_AUTO_TEST_CASE(costs_beyond_32_bits_are_exact) {
 }
 
 BOOST_AUTO_TEST_CASE(weights_around_the_32_bit_limit) {
-    // Costs are exact whatever word width an implementation picks: scan the
-    // largest weight w (= Wo = Wd = km*255) across the range where a path's
-    // worst-case cost, about (2N + D)*w, crosses 2^29 .. 2^31.
+    // Costs are exact whatever word width an implementation picks: lines whose
+    // worst-case path cost, about (2N + D + 4) * w for the largest weight w,
+    // lies around 2^29 .. 2^33 (w near kMaxWeight, N up to ~4300). With
+    // black/white rows every match costs about w, so the optimal costs
+    // themselves cross 2^30 and 2^31.
     std::mt19937 rng(21);
-    for (int k = 0; k < 24; ++k) {
-        const int N = uni(rng, 2, 40);
-        g::Params p;
-        p.D = uni(rng, 1, N);
-        p.mode = k % 2 ? g::Mode::Bidir : g::Mode::Single;
-        if (p.mode == g::Mode::Bidir) gt::random_seed(rng, p, N);
-        const int64_t span = 2 * int64_t{N} + p.D + 4;
-        for (int64_t target : {INT64_C(1) << 29, INT64_C(1) << 30, INT64_C(1) << 31}) {
-            for (int64_t dw = -2; dw <= 2; ++dw) {
-                const int64_t w = std::min<int64_t>(target / span + dw, g::kMaxWeight);
-                p.Wo = p.Wd = static_cast<int>(w);
-                p.km = static_cast<int>(w / 255);
-                p.kb = uni(rng, 0, 1);
-                p.gb = uni(rng, 0, 1) ? 0 : 255;
-                if (p.km == 0 && p.kb == 0) p.km = 1;
-                const Pair img = random_pair(rng, N, 3);
-                BOOST_TEST(crosscheck(p, img, g::Roi{0, 0, N, 3}, false));
+    for (int64_t target = INT64_C(1) << 29; target <= INT64_C(1) << 33; target *= 2) {
+        for (int k = 0; k < 4; ++k) {
+            g::Params p;
+            p.D = uni(rng, 1, 6);
+            p.mode = k % 2 ? g::Mode::Bidir : g::Mode::Single;
+            const int w = static_cast<int>(g::kMaxWeight) - uni(rng, 0, 1000);
+            const int N = std::max<int>(
+                p.D + 1, static_cast<int>((target / w - p.D - 4) / 2) + uni(rng, -1, 1));
+            p.Wo = p.Wd = w;
+            p.km = w / 255;
+            p.kb = uni(rng, 0, 1);
+            p.gb = uni(rng, 0, 1) ? 0 : 255;
+            if (p.mode == g::Mode::Bidir) gt::random_seed(rng, p, N);
+            Pair img;
+            img.W = img.stride = N;
+            img.H = 1;
+            if (k < 2) {
+                img.L.assign(static_cast<size_t>(N), 255);
+                img.R.assign(static_cast<size_t>(N), 0);
+            } else {
+                gt::random_rows(rng, N, img.L, img.R);
+            }
+            BOOST_TEST_CONTEXT("N=" << N << " " << gt::describe(p)) {
+                g::LineTables t;
+                g::forward_line(p, img.L.data(), img.R.data(), N, t);
+                const specref::LineRef r = specref::forward(p, img.L.data(), img.R.data(), N);
+                BOOST_TEST(compare_tables(t, r) == 0);
+                const g::DisparityMap m = g::compute(p, img.left(), img.right(), {0, 0, N, 1});
+                BOOST_TEST(m.data == specref::compute(p, img.L, img.R, N, {0, 0, N, 1}, false),
+                           boost::test_tools::per_element());
             }
         }
     }
@@ -549,6 +564,11 @@ BOOST_AUTO_TEST_CASE(hand_built_three_lines) {
     // [3*Wd = 90] costs 364. With the vote, line 1 gets the same row.
     g::Params p;
     p.D = 6;
+    p.km = 6;
+    p.kb = 1;
+    p.gb = 48;
+    p.Wo = 60;
+    p.Wd = 30;
     p.mode = g::Mode::Single;
     p.frame = g::Frame::Right;
     p.vote = true;

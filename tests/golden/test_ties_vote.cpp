@@ -316,6 +316,70 @@ BOOST_AUTO_TEST_CASE(voted_bp_unreachable_source_falls_back) {
     BOOST_TEST(g::voted_bp(&a, self, &b, 2, 1) == g::kM);
 }
 
+BOOST_AUTO_TEST_CASE(voted_o_to_unreachable_level_falls_back) {
+    // Right: N = 6, D = 4, s = 1, ds = 3: (1,0..2) unreachable, so at site 2
+    // only levels >= 2 are reachable. At (2,2) an O step would come from (2,1).
+    g::LineTables self = bidir_tables(6, 4, 1, 3);
+    set_bp(self, 1, 3, g::kM);
+    set_bp(self, 2, 2, g::kD);
+    set_bp(self, 2, 3, g::kM);
+    for (int i = 3; i < 6; ++i)
+        for (int j = 0; j < 4 && i + j <= 5; ++j) set_bp(self, i, j, g::kM);
+    set_bp(self, 3, 0, g::kD);
+    set_bp(self, 3, 1, g::kD);
+    g::LineTables a = self, b = self;
+    set_bp(a, 2, 2, g::kO);
+    set_bp(b, 2, 2, g::kO);
+    BOOST_TEST(g::voted_bp(&a, self, &b, 2, 2) == g::kD);
+    set_bp(a, 2, 3, g::kO);  // from (2,2): reachable
+    set_bp(b, 2, 3, g::kO);
+    BOOST_TEST(g::voted_bp(&a, self, &b, 2, 3) == g::kO);
+    set_bp(a, 3, 1, g::kM);  // from (2,1): unreachable
+    set_bp(b, 3, 1, g::kM);
+    BOOST_TEST(g::voted_bp(&a, self, &b, 3, 1) == g::kD);
+
+    // Left: N = 6, D = 4, s = 3, ds = 0: site 2 only (2,0) reachable; site 1
+    // levels 0, 1 reachable, 2, 3 not. At (1,1) an O step would go to (1,2).
+    g::LineTables left = bidir_tables(6, 4, 3, 0);
+    set_fp(left, 2, 0, g::kM);
+    set_fp(left, 1, 0, g::kM);
+    set_fp(left, 1, 1, g::kD);
+    for (int i = -1; i <= 0; ++i)
+        for (int j = 0; j < 4; ++j) set_fp(left, i, j, g::kM);
+    set_fp(left, 0, 3, g::kNone);  // (0,3): M to (1,3), D to (1,2) both unreachable
+    set_fp(left, 0, 2, g::kD);
+    g::LineTables la = left, lb = left;
+    set_fp(la, 1, 1, g::kO);
+    set_fp(lb, 1, 1, g::kO);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 1, 1) == g::kD);
+    set_fp(la, 1, 0, g::kO);  // to (1,1): reachable
+    set_fp(lb, 1, 0, g::kO);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 1, 0) == g::kO);
+    set_fp(la, 0, 2, g::kO);  // to (0,3): unreachable
+    set_fp(lb, 0, 2, g::kO);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 0, 2) == g::kD);
+    set_fp(la, 0, 1, g::kM);  // M to (1,1): reachable (own is M anyway)
+    set_fp(la, 0, 2, g::kM);  // M to (1,2): unreachable
+    set_fp(lb, 0, 2, g::kM);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 0, 2) == g::kD);
+    set_fp(la, 2, 0, g::kO);  // site s-1: O to (2,1), j > ds: unreachable
+    set_fp(lb, 2, 0, g::kO);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 2, 0) == g::kM);
+    set_fp(la, -1, 2, g::kO);  // column -1: O to (-1,3) reachable
+    set_fp(lb, -1, 2, g::kO);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, -1, 2) == g::kO);
+    set_fp(la, -1, 2, g::kD);  // column -1: D to (0,1)
+    set_fp(lb, -1, 2, g::kD);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, -1, 2) == g::kD);
+    set_fp(la, -1, 3, g::kD);  // column -1: D to (0,2): reachable
+    set_fp(lb, -1, 3, g::kD);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, -1, 3) == g::kD);
+    set_fp(la, -1, 3, g::kM);  // column -1: M to (0,3): unreachable
+    set_fp(lb, -1, 3, g::kM);
+    set_fp(left, -1, 3, g::kD);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, -1, 3) == g::kD);
+}
+
 BOOST_AUTO_TEST_CASE(voted_bp_bidir_seed_column) {
     // bidir right table, N = 5, D = 2, s = 2, free: M/D from site s+1 reach
     // site s (ok); nothing of the right wavefront lies left of site s.

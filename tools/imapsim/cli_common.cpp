@@ -22,8 +22,8 @@ long long parse_int_flag(const std::string& flag, const std::string& text, long 
         throw UserError("invalid value '" + text + "' for " + flag + ": expected an integer in " +
                         range.str());
     if (v < lo || v > hi)
-        throw UserError("value " + text + " for " + flag + " is out of range (allowed: " +
-                        range.str() + ")");
+        throw UserError("value " + text + " for " + flag +
+                        " is out of range (allowed: " + range.str() + ")");
     return v;
 }
 
@@ -83,8 +83,8 @@ g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
         p.seed_disp.free = true;
     } else {
         p.seed_disp.free = false;
-        p.seed_disp.value = static_cast<int>(parse_int_flag(
-            "--seed-disp (free or a disparity)", f.seed_disp, 0, g::kMaxLevels - 1));
+        p.seed_disp.value = static_cast<int>(
+            parse_int_flag("--seed-disp (free or a disparity)", f.seed_disp, 0, g::kMaxLevels - 1));
     }
 
     if (f.vote == "on")

@@ -22,12 +22,12 @@ enum ExitCode : int {
 
 // A user-facing error: printed as "imapsim: error: <what>" and mapped to an exit code.
 class UserError : public std::runtime_error {
-public:
+  public:
     explicit UserError(const std::string& what, int code = kExitInput)
         : std::runtime_error(what), code_(code) {}
     int code() const { return code_; }
 
-private:
+  private:
     int code_;
 };
 

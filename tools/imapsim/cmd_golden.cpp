@@ -57,8 +57,8 @@ Subcommand register_golden(CLI::App& app) {
                 std::printf(
                     "golden: ROI %d,%d,%dx%d D=%d %s vote %s frame %s: %.2f ms, %.1f%% matched "
                     "-> %s\n",
-                    roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
-                    p.vote ? "on" : "off", g::to_string(p.frame), ms,
+                    roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode), p.vote ? "on" : "off",
+                    g::to_string(p.frame), ms,
                     100.0 * static_cast<double>(matched) / static_cast<double>(m.data.size()),
                     o->out.c_str());
                 return static_cast<int>(kExitOk);

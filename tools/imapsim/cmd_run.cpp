@@ -78,8 +78,7 @@ Subcommand register_run(CLI::App& app) {
                         has_roi = true;
                     }
                 }
-                if (L.size() != R.size())
-                    throw UserError("left and right images differ in size");
+                if (L.size() != R.size()) throw UserError("left and right images differ in size");
                 if (!has_roi) roi = {0, 0, L.cols, L.rows};
                 try {
                     g::validate(p, roi, L.cols, L.rows);
@@ -87,8 +86,8 @@ Subcommand register_run(CLI::App& app) {
                     throw UserError(e.what());
                 }
                 std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, model %s\n",
-                            source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D,
-                            g::to_string(p.mode), p.vote ? "on" : "off", o->model.c_str());
+                            source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
+                            p.vote ? "on" : "off", o->model.c_str());
                 const auto t0 = std::chrono::steady_clock::now();
                 const g::DisparityMap m =
                     g::compute(p, v::view_of(L), v::view_of(R), roi, o->algo.fill);
@@ -99,7 +98,8 @@ Subcommand register_run(CLI::App& app) {
                 if (!gt.empty()) {
                     g::Params pl = p;
                     pl.frame = g::Frame::Left;
-                    const g::DisparityMap ml = g::compute(pl, v::view_of(L), v::view_of(R), roi, true);
+                    const g::DisparityMap ml =
+                        g::compute(pl, v::view_of(L), v::view_of(R), roi, true);
                     std::printf("  bad-1 vs ground truth (left frame, filled): %.2f%%\n",
                                 bad1_percent(ml, gt, roi));
                 }

@@ -51,7 +51,7 @@ struct Params {
 // Raised for any invalid parameter: the message names the parameter, the
 // offending value and the allowed range.
 class ParamError : public std::invalid_argument {
-public:
+  public:
     using std::invalid_argument::invalid_argument;
 };
 
@@ -71,7 +71,9 @@ void validate(const Params& p, const Roi& roi, int img_w, int img_h);
 int resolve_seed_col(const Params& p, int N);
 
 // Number of valid levels at site i (0 <= i < N): min(D, N - i).
-inline int levels_at(int i, int N, int D) { return (N - i) < D ? (N - i) : D; }
+inline int levels_at(int i, int N, int D) {
+    return (N - i) < D ? (N - i) : D;
+}
 
 // Text forms used by the command line and the reports.
 const char* to_string(Mode m);

@@ -52,8 +52,8 @@ struct Event {
 struct LineTables {
     int N = 0;
     int D = 0;
-    int s = 0;            // seed column (bidir) or 0 (single)
-    int ds = -1;          // seed disparity, -1 = free (bidir)
+    int s = 0;    // seed column (bidir) or 0 (single)
+    int ds = -1;  // seed disparity, -1 = free (bidir)
     bool bidir = false;
     int right_first = 0;  // first site stored in `right`
     std::vector<uint8_t> right;

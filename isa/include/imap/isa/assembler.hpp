@@ -24,11 +24,11 @@ struct Diagnostic {
 // Assembly failed: every collected diagnostic (at most max_errors, then a
 // final "too many errors" line). what() is all of them, one per line.
 class AsmError : public std::runtime_error {
-public:
+  public:
     explicit AsmError(std::vector<Diagnostic> d);
     const std::vector<Diagnostic>& diagnostics() const { return diags_; }
 
-private:
+  private:
     std::vector<Diagnostic> diags_;
 };
 

@@ -13,7 +13,7 @@ namespace imap::isa {
 
 // Invalid parameter: the message names the parameter, the value and the range.
 class ConfigError : public std::invalid_argument {
-public:
+  public:
     using std::invalid_argument::invalid_argument;
 };
 
@@ -60,14 +60,14 @@ struct CostTable {
 };
 
 struct MachineConfig {
-    int pes = 256;                  // PEs in the linear array (runtime)
-    double clock_mhz = 40.0;        // array clock, for modeled time only
-    uint32_t mem_bytes = 1024;      // local memory per PE
-    uint32_t ext_bytes = 65536;     // external memory per PE (0 disables xld / xst)
-    int pe_regs = 16;               // general registers per PE
-    int mask_depth = 8;             // mif nesting depth
-    int call_depth = 8;             // CP return stack depth
-    bool indirect = true;           // per-PE addressing (ldx / stx) present
+    int pes = 256;                             // PEs in the linear array (runtime)
+    double clock_mhz = 40.0;                   // array clock, for modeled time only
+    uint32_t mem_bytes = 1024;                 // local memory per PE
+    uint32_t ext_bytes = 65536;                // external memory per PE (0 disables xld / xst)
+    int pe_regs = 16;                          // general registers per PE
+    int mask_depth = 8;                        // mif nesting depth
+    int call_depth = 8;                        // CP return stack depth
+    bool indirect = true;                      // per-PE addressing (ldx / stx) present
     uint64_t watchdog_cycles = 2000000000ull;  // runaway-program limit
     CostTable costs;
 
@@ -79,7 +79,9 @@ struct MachineConfig {
     // set("pes", "128"), set("ring_hop", "2"), set("indirect", "off").
     void set(std::string_view name, std::string_view value);
     // Modeled time of `cycles` at clock_mhz.
-    double seconds(uint64_t cycles) const { return static_cast<double>(cycles) / (clock_mhz * 1e6); }
+    double seconds(uint64_t cycles) const {
+        return static_cast<double>(cycles) / (clock_mhz * 1e6);
+    }
 };
 
 }  // namespace imap::isa

@@ -15,8 +15,8 @@ inline constexpr uint8_t kNoBase = 0x80;  // base field value of an absolute [#a
 
 // Ldx/Stx imm field: signed 24-bit offset, optional CP register, optional high byte.
 inline constexpr uint32_t kLdxOffsetMask = 0x00FFFFFFu;
-inline constexpr int kLdxCpShift = 24;           // bits 24..27: CP register
-inline constexpr uint32_t kLdxUseCp = 1u << 28;  // add the CP register
+inline constexpr int kLdxCpShift = 24;            // bits 24..27: CP register
+inline constexpr uint32_t kLdxUseCp = 1u << 28;   // add the CP register
 inline constexpr uint32_t kLdxNoHigh = 1u << 29;  // single-byte offset register (rb must be 0)
 inline constexpr int32_t kLdxOffsetMin = -(1 << 23);
 inline constexpr int32_t kLdxOffsetMax = (1 << 23) - 1;

@@ -21,16 +21,16 @@ namespace imap::isa {
 // runaway program, ...). State is left as it was before the faulting
 // instruction (except for the watchdog, which fires between instructions).
 class Fault : public std::runtime_error {
-public:
+  public:
     static constexpr int64_t kNone = -1;  // pe / address not applicable
     Fault(const std::string& what, uint32_t pc, int64_t pe, int64_t address, uint64_t cycle)
         : std::runtime_error(what), pc_(pc), pe_(pe), address_(address), cycle_(cycle) {}
     uint32_t pc() const { return pc_; }
-    int64_t pe() const { return pe_; }          // kNone when all PEs / not a PE fault
+    int64_t pe() const { return pe_; }            // kNone when all PEs / not a PE fault
     int64_t address() const { return address_; }  // kNone when not an address fault
     uint64_t cycle() const { return cycle_; }
 
-private:
+  private:
     uint32_t pc_;
     int64_t pe_, address_;
     uint64_t cycle_;
@@ -39,11 +39,11 @@ private:
 // A program that cannot be loaded on this configuration (unknown opcode,
 // register out of range, branch outside the program, ...). Names the PC.
 class LoadError : public std::runtime_error {
-public:
+  public:
     LoadError(const std::string& what, uint32_t pc) : std::runtime_error(what), pc_(pc) {}
     uint32_t pc() const { return pc_; }
 
-private:
+  private:
     uint32_t pc_;
 };
 
@@ -51,7 +51,7 @@ private:
 // Implementations may throw std::exception (e.g. for a line outside the
 // image); the machine reports it as a Fault naming the PC.
 class VideoPort {
-public:
+  public:
     virtual ~VideoPort() = default;
     // dst[i] = pixel (x0 + i, y) of input image `port` (0 = left, 1 = right);
     // pixels outside the image width read as 0.
@@ -63,7 +63,7 @@ public:
 
 // A VideoPort over in-memory 8-bit images (tests and tools).
 class ImageVideoPort : public VideoPort {
-public:
+  public:
     struct Image {
         int width = 0, height = 0;
         std::vector<uint8_t> pixels;  // row-major, width * height
@@ -86,7 +86,7 @@ struct TraceEvent {
     uint64_t cycle_after;
 };
 class Observer {
-public:
+  public:
     virtual ~Observer() = default;
     virtual void on_instruction(const Machine& m, const TraceEvent& e) = 0;
 };
@@ -109,7 +109,7 @@ struct Decoded;
 using Handler = void (*)(Machine&, const Decoded&);
 struct Decoded {
     Handler fn = nullptr;
-    uint64_t cost = 0;  // fixed cycles (variable parts are added by the handler)
+    uint64_t cost = 0;             // fixed cycles (variable parts are added by the handler)
     uint32_t d = 0, a = 0, b = 0;  // lane offsets of PE registers, or CP register numbers
     int32_t imm = 0;
     uint32_t aux = 0;  // format-specific (ldx CP register, video cY/cX, ...)
@@ -128,7 +128,7 @@ struct Stats {
 };
 
 class Machine {
-public:
+  public:
     // Validates the configuration (ConfigError) and allocates the state.
     explicit Machine(const MachineConfig& cfg);
     Machine(const Machine&) = delete;
@@ -162,7 +162,9 @@ public:
     const std::vector<uint64_t>& phase_cycles() const { return phase_cycles_; }
     uint32_t current_phase() const { return phase_; }
 
-    // ---- PE lanes (P bytes each, PE p at index p) ----
+    // ---- PE lanes (P bytes each, PE p at index p; flags and mask are 0/1) ----
+    // Writable for testbenches and debuggers; values other than 0/1 in C, T or
+    // M are not allowed, and host writes to M are not seen by active_pes().
     const uint8_t* reg_lanes(int r) const { return lanes_.data() + lane_off(r); }
     uint8_t* reg_lanes(int r) { return lanes_.data() + lane_off(r); }
     const uint8_t* carry_lanes() const { return c_; }
@@ -196,7 +198,7 @@ public:
     const std::array<uint32_t, kParamWords>& params() const { return params_; }
     int call_stack_size() const { return csp_; }
 
-private:
+  private:
     friend struct Exec;
 
     size_t lane_off(int r) const;

@@ -11,7 +11,7 @@ namespace imap::isa {
 
 // A bad, truncated or unreadable program file.
 class FormatError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -21,11 +21,11 @@ struct SourceLoc {
 };
 
 struct Program {
-    std::vector<uint64_t> code;                // instruction words, PC = index
-    std::vector<std::string> phases;           // phase id -> name; [0] = "default"
-    std::map<std::string, uint32_t> symbols;   // label -> PC
-    std::vector<std::string> files;            // source files of the source map
-    std::vector<SourceLoc> source_map;         // PC -> location; empty or code.size()
+    std::vector<uint64_t> code;               // instruction words, PC = index
+    std::vector<std::string> phases;          // phase id -> name; [0] = "default"
+    std::map<std::string, uint32_t> symbols;  // label -> PC
+    std::vector<std::string> files;           // source files of the source map
+    std::vector<SourceLoc> source_map;        // PC -> location; empty or code.size()
 
     // "file:line" of a PC, or "" when unknown.
     std::string location(uint32_t pc) const;
@@ -37,7 +37,7 @@ struct Program {
                source_map.size() == o.source_map.size() && same_map(o);
     }
 
-private:
+  private:
     bool same_map(const Program& o) const;
 };
 

@@ -20,10 +20,20 @@ struct LaneOut {
 // True for the ALU ops that write the carry flag.
 constexpr bool writes_carry(Op o) {
     switch (o) {
-        case Op::ADD: case Op::ADC: case Op::SUB: case Op::SBC:
-        case Op::ADDI: case Op::ADCI: case Op::SUBI: case Op::SBCI:
-        case Op::SHLI: case Op::SHRI: case Op::ROLC: case Op::RORC:
-        case Op::SHLV: case Op::SHRV:
+        case Op::ADD:
+        case Op::ADC:
+        case Op::SUB:
+        case Op::SBC:
+        case Op::ADDI:
+        case Op::ADCI:
+        case Op::SUBI:
+        case Op::SBCI:
+        case Op::SHLI:
+        case Op::SHRI:
+        case Op::ROLC:
+        case Op::RORC:
+        case Op::SHLV:
+        case Op::SHRV:
             return true;
         default:
             return false;
@@ -57,23 +67,30 @@ constexpr LaneOut alu(uint8_t a, uint8_t b, uint8_t c) {
     } else if constexpr (O == Op::MAX || O == Op::MAXI) {
         return {a > b ? a : b, c};
     } else if constexpr (O == Op::SHLI || O == Op::SHLV) {
-        // Shift by n = 0..7 in three conditional stages on a 16-bit word, so
-        // the per-lane amount of shlv vectorises; bit 8 is the last bit out.
-        // n = 0 leaves the value and C unchanged.
+        // Shift by n = 0..7 in three conditional stages (1, 2, 4) of 8-bit
+        // operations, so a per-lane amount (shlv) vectorises and a constant
+        // amount folds to one shift. C = the last bit out of the last active
+        // stage = bit 8 - n of a; n = 0 leaves the value and C unchanged.
         const unsigned n = b & 7u;
-        uint16_t w = a;
-        w = (n & 1u) ? static_cast<uint16_t>(w << 1) : w;
-        w = (n & 2u) ? static_cast<uint16_t>(w << 2) : w;
-        w = (n & 4u) ? static_cast<uint16_t>(w << 4) : w;
-        return {static_cast<uint8_t>(w), n ? static_cast<uint8_t>((w >> 8) & 1u) : c};
+        uint8_t r = a, co = c;
+        co = (n & 1u) ? static_cast<uint8_t>(r >> 7) : co;
+        r = (n & 1u) ? static_cast<uint8_t>(r << 1) : r;
+        co = (n & 2u) ? static_cast<uint8_t>((r >> 6) & 1u) : co;
+        r = (n & 2u) ? static_cast<uint8_t>(r << 2) : r;
+        co = (n & 4u) ? static_cast<uint8_t>((r >> 4) & 1u) : co;
+        r = (n & 4u) ? static_cast<uint8_t>(r << 4) : r;
+        return {r, co};
     } else if constexpr (O == Op::SHRI || O == Op::SHRV) {
-        // The value in the high byte; bit 7 is the last bit out.
+        // As above; C = bit n - 1 of a.
         const unsigned n = b & 7u;
-        uint16_t w = static_cast<uint16_t>(a << 8);
-        w = (n & 1u) ? static_cast<uint16_t>(w >> 1) : w;
-        w = (n & 2u) ? static_cast<uint16_t>(w >> 2) : w;
-        w = (n & 4u) ? static_cast<uint16_t>(w >> 4) : w;
-        return {static_cast<uint8_t>(w >> 8), n ? static_cast<uint8_t>((w >> 7) & 1u) : c};
+        uint8_t r = a, co = c;
+        co = (n & 1u) ? static_cast<uint8_t>(r & 1u) : co;
+        r = (n & 1u) ? static_cast<uint8_t>(r >> 1) : r;
+        co = (n & 2u) ? static_cast<uint8_t>((r >> 1) & 1u) : co;
+        r = (n & 2u) ? static_cast<uint8_t>(r >> 2) : r;
+        co = (n & 4u) ? static_cast<uint8_t>((r >> 3) & 1u) : co;
+        r = (n & 4u) ? static_cast<uint8_t>(r >> 4) : r;
+        return {r, co};
     } else if constexpr (O == Op::ROLC) {
         return {static_cast<uint8_t>((a << 1) | c), static_cast<uint8_t>(a >> 7)};
     } else if constexpr (O == Op::RORC) {
@@ -87,12 +104,18 @@ constexpr LaneOut alu(uint8_t a, uint8_t b, uint8_t c) {
 // Comparator: T = a op b (unsigned).
 template <Op O>
 constexpr uint8_t compare(uint8_t a, uint8_t b) {
-    if constexpr (O == Op::CEQ || O == Op::CEQI) return a == b;
-    else if constexpr (O == Op::CNE || O == Op::CNEI) return a != b;
-    else if constexpr (O == Op::CLTU || O == Op::CLTUI) return a < b;
-    else if constexpr (O == Op::CLEU || O == Op::CLEUI) return a <= b;
-    else if constexpr (O == Op::CGTU || O == Op::CGTUI) return a > b;
-    else if constexpr (O == Op::CGEU || O == Op::CGEUI) return a >= b;
+    if constexpr (O == Op::CEQ || O == Op::CEQI)
+        return a == b;
+    else if constexpr (O == Op::CNE || O == Op::CNEI)
+        return a != b;
+    else if constexpr (O == Op::CLTU || O == Op::CLTUI)
+        return a < b;
+    else if constexpr (O == Op::CLEU || O == Op::CLEUI)
+        return a <= b;
+    else if constexpr (O == Op::CGTU || O == Op::CGTUI)
+        return a > b;
+    else if constexpr (O == Op::CGEU || O == Op::CGEUI)
+        return a >= b;
     else {
         static_assert(O == Op::CEQ, "not a compare op");
         return 0;
