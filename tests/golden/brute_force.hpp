@@ -38,7 +38,8 @@ inline int64_t step_cost(const Line& l, int i, int j, int step) {
     const int a = l.R[i], b = l.L[i + j];
     const int64_t diff = a > b ? a - b : b - a;
     const int64_t dark = l.p.gb - (a < b ? a : b);
-    return static_cast<int64_t>(l.p.km) * diff + static_cast<int64_t>(l.p.kb) * (dark > 0 ? dark : 0);
+    return static_cast<int64_t>(l.p.km) * diff +
+           static_cast<int64_t>(l.p.kb) * (dark > 0 ? dark : 0);
 }
 
 using Visit = std::function<void(const Path&, int64_t)>;
@@ -148,8 +149,7 @@ inline Result bidir_left(const Line& l, int s, int ds) {
     Result r;
     Path path;
     enumerate(
-        l, s - 1, -1, 0, path, 0,
-        [&](int i, int j) { return i == s - 1 && (ds < 0 || j == ds); },
+        l, s - 1, -1, 0, path, 0, [&](int i, int j) { return i == s - 1 && (ds < 0 || j == ds); },
         [&](const Path& p, int64_t c) {
             const int jend = p.empty() ? 0 : p.back().j;
             record(r, p, c, consumes_exactly(p, l.N, 0, s, 0, s + jend));

@@ -116,10 +116,10 @@ inline void right_pass(const g::Params& p, const uint8_t* L, const uint8_t* R, L
         for (int j = 0; j < t.D; ++j) {  // increasing j: O reads the same site
             if (!t.valid(i, j)) continue;
             Best b;
-            b.consider(t.right_ok(i - 1, j), t.right_ok(i - 1, j) ? t.E[i][j] + wm(p, R[i], L[i + j]) : 0,
-                       g::kM);
-            b.consider(t.right_ok(i - 1, j + 1), t.right_ok(i - 1, j + 1) ? t.E[i][j + 1] + p.Wd : 0,
-                       g::kD);
+            b.consider(t.right_ok(i - 1, j),
+                       t.right_ok(i - 1, j) ? t.E[i][j] + wm(p, R[i], L[i + j]) : 0, g::kM);
+            b.consider(t.right_ok(i - 1, j + 1),
+                       t.right_ok(i - 1, j + 1) ? t.E[i][j + 1] + p.Wd : 0, g::kD);
             b.consider(t.right_ok(i, j - 1), t.right_ok(i, j - 1) ? t.E[i + 1][j - 1] + p.Wo : 0,
                        g::kO);
             t.Er[i + 1][j] = b.have ? 1 : 0;
@@ -244,7 +244,9 @@ inline void target_of(int step, int i, int j, int& ti, int& tj) {
     }
 }
 
-inline bool is_step(int v) { return v == g::kM || v == g::kD || v == g::kO; }
+inline bool is_step(int v) {
+    return v == g::kM || v == g::kD || v == g::kO;
+}
 
 // A.5 + A.6 fallback, right wavefront (bp).
 inline int voted_bp(const LineRef* above, const LineRef& self, const LineRef* below, int i, int j) {

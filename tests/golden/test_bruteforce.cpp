@@ -26,7 +26,9 @@ std::string context(const g::Params& p, const std::vector<uint8_t>& L,
            " R=" + gt::row_string(R.data(), N);
 }
 
-void source_of(const g::Event& e, int& si, int& sj) { specref::source_of(e.step, e.i, e.j, si, sj); }
+void source_of(const g::Event& e, int& si, int& sj) {
+    specref::source_of(e.step, e.i, e.j, si, sj);
+}
 
 // Checks the single-mode backtrack (vote off) against A.6: starts at (N-1,0),
 // each event is the table's pointer, consecutive events are linked by their

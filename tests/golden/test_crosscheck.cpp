@@ -60,8 +60,8 @@ std::string ctx_string(const g::Params& p, const Pair& img, const g::Roi& roi, b
     os << gt::describe(p) << " fill=" << fill << " image " << img.W << "x" << img.H << " ROI "
        << roi.x0 << "," << roi.y0 << "," << roi.w << "," << roi.h << "\n";
     for (int y = 0; y < img.H; ++y)
-        os << "  L" << y << "=" << gt::row_string(img.L.data() + y * img.stride, img.W) << " R"
-           << y << "=" << gt::row_string(img.R.data() + y * img.stride, img.W) << "\n";
+        os << "  L" << y << "=" << gt::row_string(img.L.data() + y * img.stride, img.W) << " R" << y
+           << "=" << gt::row_string(img.R.data() + y * img.stride, img.W) << "\n";
     return os.str();
 }
 
@@ -78,8 +78,8 @@ int compare_tables(const g::LineTables& t, const specref::LineRef& r) {
     const int N = r.N, D = r.D;
     check(t.N == N && t.D == D, "N/D");
     check(t.bidir == r.bidir, "bidir flag");
-    check(t.right_cost == r.right_cost, "right_cost " + std::to_string(t.right_cost) + " != " +
-                                            std::to_string(r.right_cost));
+    check(t.right_cost == r.right_cost,
+          "right_cost " + std::to_string(t.right_cost) + " != " + std::to_string(r.right_cost));
     if (bad) return bad;
     if (!r.bidir) {
         check(t.right_first == 0, "right_first");
@@ -87,16 +87,15 @@ int compare_tables(const g::LineTables& t, const specref::LineRef& r) {
         if (bad) return bad;
         for (int i = 0; i < N; ++i)
             for (int j = 0; j < D; ++j)
-                check(t.bp(i, j) == r.bpv(i, j), "bp(" + std::to_string(i) + "," +
-                                                     std::to_string(j) + ") = " +
-                                                     std::to_string(t.bp(i, j)) + ", want " +
-                                                     std::to_string(r.bpv(i, j)));
+                check(t.bp(i, j) == r.bpv(i, j),
+                      "bp(" + std::to_string(i) + "," + std::to_string(j) + ") = " +
+                          std::to_string(t.bp(i, j)) + ", want " + std::to_string(r.bpv(i, j)));
         return bad;
     }
     check(t.s == r.s, "s " + std::to_string(t.s) + " != " + std::to_string(r.s));
     check(t.ds == r.ds, "ds " + std::to_string(t.ds) + " != " + std::to_string(r.ds));
-    check(t.left_cost == r.left_cost, "left_cost " + std::to_string(t.left_cost) + " != " +
-                                          std::to_string(r.left_cost));
+    check(t.left_cost == r.left_cost,
+          "left_cost " + std::to_string(t.left_cost) + " != " + std::to_string(r.left_cost));
     check(t.right_first == r.s, "right_first");
     check(t.right.size() == static_cast<size_t>(N - r.s) * D, "right size");
     check(t.left.size() == static_cast<size_t>(r.s + 1) * D, "left size");
@@ -109,8 +108,8 @@ int compare_tables(const g::LineTables& t, const specref::LineRef& r) {
                                                  std::to_string(r.bpv(i, j)));
     for (int i = -1; i <= r.s - 1; ++i) {
         for (int j = 0; j < D; ++j) {
-            const std::string where = "fp(" + std::to_string(i) + "," + std::to_string(j) + ") = " +
-                                      std::to_string(t.fp(i, j)) + ", want " +
+            const std::string where = "fp(" + std::to_string(i) + "," + std::to_string(j) +
+                                      ") = " + std::to_string(t.fp(i, j)) + ", want " +
                                       std::to_string(r.fpv(i, j));
             if (i == r.s - 1 && r.Gr[i + 1][j] && r.fpv(i, j) != g::kO) {
                 // The seed's left neighbour / a free site s-1: the pointer value
@@ -171,7 +170,9 @@ bool crosscheck(const g::Params& p, const Pair& img, const g::Roi& roi, bool fil
             const size_t off = static_cast<size_t>(roi.y0 + y) * img.stride + roi.x0;
             g::forward_line(p, img.L.data() + off, img.R.data() + off, N, tabs[y]);
             refs.push_back(specref::forward(p, img.L.data() + off, img.R.data() + off, N));
-            BOOST_TEST_CONTEXT("line " << y) { bad += compare_tables(tabs[y], refs[y]); }
+            BOOST_TEST_CONTEXT("line " << y) {
+                bad += compare_tables(tabs[y], refs[y]);
+            }
         }
         if (bad) return false;
         for (int y = 0; y < roi.h; ++y) {
@@ -202,10 +203,9 @@ bool crosscheck(const g::Params& p, const Pair& img, const g::Roi& roi, bool fil
             ++bad;
             BOOST_ERROR("compute() output differs");
             for (int y = 0; y < roi.h && map.data.size() == want.size(); ++y)
-                BOOST_TEST_MESSAGE("row " << y << " got "
-                                          << gt::row_string(map.data.data() + y * roi.w, roi.w)
-                                          << " want "
-                                          << gt::row_string(want.data() + y * roi.w, roi.w));
+                BOOST_TEST_MESSAGE(
+                    "row " << y << " got " << gt::row_string(map.data.data() + y * roi.w, roi.w)
+                           << " want " << gt::row_string(want.data() + y * roi.w, roi.w));
         }
     }
     return bad == 0;
@@ -491,8 +491,7 @@ BOOST_AUTO_TEST_CASE(roi_and_stride) {
         BOOST_TEST(a.width == roi.w);
         BOOST_TEST(a.height == roi.h);
         BOOST_TEST(a.data.size() == static_cast<size_t>(roi.w) * roi.h);
-        if (roi.w > 0 && roi.h > 0)
-            BOOST_TEST(a.at(roi.w - 1, roi.h - 1) == a.data.back());
+        if (roi.w > 0 && roi.h > 0) BOOST_TEST(a.at(roi.w - 1, roi.h - 1) == a.data.back());
     }
 }
 

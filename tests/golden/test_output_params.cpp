@@ -36,7 +36,9 @@ using Bytes = std::vector<uint8_t>;
 
 BOOST_AUTO_TEST_SUITE(output_frames)
 
-BOOST_AUTO_TEST_CASE(occluded_value) { BOOST_TEST(int(g::kOccluded) == 255); }
+BOOST_AUTO_TEST_CASE(occluded_value) {
+    BOOST_TEST(int(g::kOccluded) == 255);
+}
 
 BOOST_AUTO_TEST_CASE(three_frames) {
     // M(0,0) M(1,1) O(2,2) M(2,2) D(3,1) M(4,1) M(5,0), N = 6.
@@ -162,11 +164,10 @@ bool has_token(const std::string& msg, const std::string& tok) {
         const bool right_ok = end >= msg.size() || !word(msg[end]) || !word(tok.back());
         // A number must not continue with more digits or start after a digit or '-'.
         const bool num = std::isdigit(static_cast<unsigned char>(tok.back())) != 0;
-        const bool num_ok = !num || ((pos == 0 || (!std::isdigit(static_cast<unsigned char>(
-                                                       msg[pos - 1])) &&
-                                                   (tok.front() == '-' || msg[pos - 1] != '-'))) &&
-                                     (end >= msg.size() ||
-                                      !std::isdigit(static_cast<unsigned char>(msg[end]))));
+        const bool num_ok =
+            !num || ((pos == 0 || (!std::isdigit(static_cast<unsigned char>(msg[pos - 1])) &&
+                                   (tok.front() == '-' || msg[pos - 1] != '-'))) &&
+                     (end >= msg.size() || !std::isdigit(static_cast<unsigned char>(msg[end]))));
         if (left_ok && right_ok && num_ok) return true;
     }
     return false;
@@ -392,15 +393,20 @@ BOOST_AUTO_TEST_CASE(region_of_interest) {
         BOOST_TEST(has_ci(msg, "ROI"), msg);
         for (const auto& t : tokens) BOOST_TEST(has_token(msg, t), "'" << t << "' not in: " << msg);
     };
-    roi_error({5, 0, 10, 3}, 12, 4, {"5", "10"});   // x0 + w > width
-    roi_error({0, 3, 12, 2}, 12, 4, {"3", "2"});    // y0 + h > height
-    roi_error({-2, 0, 4, 2}, 12, 4, {"-2"});        // x0 < 0
-    roi_error({0, -1, 4, 2}, 12, 4, {"-1"});        // y0 < 0
-    roi_error({0, 0, 0, 2}, 12, 4, {"0"});          // w = 0
-    roi_error({0, 0, 4, 0}, 12, 4, {"0"});          // h = 0
-    roi_error({13, 0, 1, 1}, 12, 4, {"13"});        // x0 beyond the image
+    roi_error({5, 0, 10, 3}, 12, 4, {"5", "10"});  // x0 + w > width
+    roi_error({0, 3, 12, 2}, 12, 4, {"3", "2"});   // y0 + h > height
+    roi_error({-2, 0, 4, 2}, 12, 4, {"-2"});       // x0 < 0
+    roi_error({0, -1, 4, 2}, 12, 4, {"-1"});       // y0 < 0
+    roi_error({0, 0, 0, 2}, 12, 4, {"0"});         // w = 0
+    roi_error({0, 0, 4, 0}, 12, 4, {"0"});         // h = 0
+    roi_error({13, 0, 1, 1}, 12, 4, {"13"});       // x0 beyond the image
+    roi_error({3, 0, 10, 1}, 12, 4, {"3", "10"});  // one pixel too wide
+    roi_error({0, 1, 12, 4}, 12, 4, {"1", "4"});   // one line too high
+    roi_error({0, 0, 13, 4}, 12, 4, {"13"});       // wider than the image
     BOOST_CHECK_NO_THROW(g::validate(p, g::Roi{0, 0, 12, 4}, 12, 4));
     BOOST_CHECK_NO_THROW(g::validate(p, g::Roi{10, 3, 2, 1}, 12, 4));
+    BOOST_CHECK_NO_THROW(g::validate(p, g::Roi{2, 0, 10, 4}, 12, 4));
+    BOOST_CHECK_NO_THROW(g::validate(p, g::Roi{10, 0, 2, 4}, 12, 4));
     // D is checked against the ROI width, not the image width.
     p.D = 5;
     BOOST_CHECK_THROW(g::validate(p, g::Roi{0, 0, 4, 4}, 12, 4), g::ParamError);
@@ -443,9 +449,9 @@ BOOST_AUTO_TEST_CASE(match_cost_formula) {
     p.km = 6;
     p.kb = 1;
     p.gb = 48;
-    BOOST_TEST(g::match_cost(p, 100, 90) == 6 * 10 + 0);        // gb - min < 0 -> 0
-    BOOST_TEST(g::match_cost(p, 20, 30) == 6 * 10 + 1 * 28);    // gb - 20
-    BOOST_TEST(g::match_cost(p, 30, 20) == 6 * 10 + 1 * 28);    // symmetric
+    BOOST_TEST(g::match_cost(p, 100, 90) == 6 * 10 + 0);      // gb - min < 0 -> 0
+    BOOST_TEST(g::match_cost(p, 20, 30) == 6 * 10 + 1 * 28);  // gb - 20
+    BOOST_TEST(g::match_cost(p, 30, 20) == 6 * 10 + 1 * 28);  // symmetric
     BOOST_TEST(g::match_cost(p, 48, 48) == 0);
     BOOST_TEST(g::match_cost(p, 0, 255) == 6 * 255 + 48);
     std::mt19937 rng(8);
@@ -499,7 +505,8 @@ BOOST_AUTO_TEST_CASE(balanced_seed_column_matches_definition) {
     for (int N = 2; N <= 300; N += (N < 40 ? 1 : 7)) {
         for (int D = 1; D <= std::min(N, 255); D += (D < 20 ? 1 : 11)) {
             p.D = D;
-            BOOST_TEST(g::resolve_seed_col(p, N) == specref::seed_col(p, N), "N=" << N << " D=" << D);
+            BOOST_TEST(g::resolve_seed_col(p, N) == specref::seed_col(p, N),
+                       "N=" << N << " D=" << D);
         }
     }
 }

@@ -34,7 +34,8 @@ g::Params abs_diff_params(g::Mode mode, int D, int Wo, int Wd) {
 //   E(0,1) = min(M: E(-1,1) + y = 3 + y, D: E(-1,2) + Wd = 7, O: E(0,0) + 3)
 g::LineTables right_tie_case(int x, int y, specref::LineRef* ref = nullptr) {
     const g::Params p = abs_diff_params(g::Mode::Single, 3, 3, 1);
-    const std::vector<uint8_t> L = {static_cast<uint8_t>(100 + x), static_cast<uint8_t>(100 + y), 7};
+    const std::vector<uint8_t> L = {static_cast<uint8_t>(100 + x), static_cast<uint8_t>(100 + y),
+                                    7};
     const std::vector<uint8_t> R = {100, 50, 60};
     g::LineTables t;
     g::forward_line(p, L.data(), R.data(), 3, t);
@@ -186,8 +187,8 @@ BOOST_AUTO_TEST_CASE(random_tie_heavy_lines_match_reference) {
         g::LineTables t;
         g::forward_line(p, L.data(), R.data(), N, t);
         const specref::LineRef ref = specref::forward(p, L.data(), R.data(), N);
-        BOOST_TEST_CONTEXT("trial " << trial << " " << gt::describe(p) << " L="
-                                    << gt::row_string(L.data(), N)
+        BOOST_TEST_CONTEXT("trial " << trial << " " << gt::describe(p)
+                                    << " L=" << gt::row_string(L.data(), N)
                                     << " R=" << gt::row_string(R.data(), N)) {
             BOOST_TEST(t.right_cost == ref.right_cost);
             const int first = p.mode == g::Mode::Bidir ? ref.s + 1 : 0;
@@ -221,7 +222,8 @@ g::LineTables single_tables(int N, int D, uint8_t fill) {
     t.right_first = 0;
     t.right.assign(static_cast<size_t>(N) * D, g::kNone);
     for (int i = 0; i < N; ++i)
-        for (int j = 0; j < D && i + j <= N - 1; ++j) t.right[static_cast<size_t>(i) * D + j] = fill;
+        for (int j = 0; j < D && i + j <= N - 1; ++j)
+            t.right[static_cast<size_t>(i) * D + j] = fill;
     return t;
 }
 
@@ -258,7 +260,7 @@ BOOST_AUTO_TEST_CASE(voted_bp_rules) {
 
     set_bp(a, 1, 0, g::kD);
     set_bp(b, 1, 0, g::kD);
-    BOOST_TEST(g::voted_bp(&a, self, &b, 1, 0) == g::kD);  // agree -> neighbours' pointer
+    BOOST_TEST(g::voted_bp(&a, self, &b, 1, 0) == g::kD);       // agree -> neighbours' pointer
     BOOST_TEST(g::voted_bp(&a, self, nullptr, 1, 0) == g::kM);  // missing neighbour -> own
     BOOST_TEST(g::voted_bp(nullptr, self, &b, 1, 0) == g::kM);
     BOOST_TEST(g::voted_bp(nullptr, self, nullptr, 1, 0) == g::kM);
@@ -378,6 +380,26 @@ BOOST_AUTO_TEST_CASE(voted_o_to_unreachable_level_falls_back) {
     set_fp(lb, -1, 3, g::kM);
     set_fp(left, -1, 3, g::kD);
     BOOST_TEST(g::voted_fp(&la, left, &lb, -1, 3) == g::kD);
+
+    // kNone marks an unreachable state (stereo.hpp): a voted D into one falls
+    // back too. Mark (1,0) unreachable in a copy; D from (0,1) would go there.
+    g::LineTables cut = left;
+    set_fp(cut, 1, 0, g::kNone);
+    set_fp(la, 0, 1, g::kD);
+    set_fp(lb, 0, 1, g::kD);
+    BOOST_TEST(g::voted_fp(&la, left, &lb, 0, 1) == g::kD);
+    BOOST_TEST(g::voted_fp(&la, cut, &lb, 0, 1) == g::kM);
+    // Same for a voted D in the right wavefront (source (0,1) marked kNone).
+    g::LineTables single = single_tables(4, 3, g::kM), sa = single, sb = single;
+    set_bp(sa, 1, 0, g::kD);
+    set_bp(sb, 1, 0, g::kD);
+    BOOST_TEST(g::voted_bp(&sa, single, &sb, 1, 0) == g::kD);
+    set_bp(single, 0, 1, g::kNone);
+    BOOST_TEST(g::voted_bp(&sa, single, &sb, 1, 0) == g::kM);
+    set_bp(sa, 1, 1, g::kM);  // M from (0,1), marked kNone
+    set_bp(sb, 1, 1, g::kM);
+    set_bp(single, 1, 1, g::kO);
+    BOOST_TEST(g::voted_bp(&sa, single, &sb, 1, 1) == g::kO);
 }
 
 BOOST_AUTO_TEST_CASE(voted_bp_bidir_seed_column) {
@@ -422,7 +444,7 @@ BOOST_AUTO_TEST_CASE(voted_fp_rules) {
     BOOST_TEST(g::voted_fp(nullptr, self, &b, 1, 0) == g::kM);
     set_fp(b, 1, 0, g::kD);
     BOOST_TEST(g::voted_fp(&a, self, &b, 1, 0) == g::kM);  // disagree
-    set_fp(a, 0, 1, g::kO);  // O to (0,2): level D -> own
+    set_fp(a, 0, 1, g::kO);                                // O to (0,2): level D -> own
     set_fp(b, 0, 1, g::kO);
     BOOST_TEST(g::voted_fp(&a, self, &b, 0, 1) == g::kM);
     set_fp(a, 0, 0, g::kD);  // D to (1,-1) -> own
@@ -484,10 +506,10 @@ BOOST_AUTO_TEST_CASE(backtrack_bidir_with_vote_and_fallback) {
     set_fp(nb, -1, 0, g::kO);  // -> (-1,1)
     set_fp(nb, 0, 1, g::kO);   // -> (0,2) invalid -> own M
 
-    const std::vector<g::Event> off = {{0, 0, g::kM}, {1, 0, g::kM}, {1, 1, g::kO},
-                                       {3, 0, g::kD}, {2, 1, g::kM}};
-    const std::vector<g::Event> on = {{-1, 1, g::kO}, {0, 1, g::kM}, {1, 1, g::kM},
-                                      {3, 0, g::kD},  {2, 1, g::kM}};
+    const std::vector<g::Event> off = {
+        {0, 0, g::kM}, {1, 0, g::kM}, {1, 1, g::kO}, {3, 0, g::kD}, {2, 1, g::kM}};
+    const std::vector<g::Event> on = {
+        {-1, 1, g::kO}, {0, 1, g::kM}, {1, 1, g::kM}, {3, 0, g::kD}, {2, 1, g::kM}};
     std::vector<g::Event> ev = g::backtrack(&nb, self, &nb, false);
     BOOST_TEST((ev == off), gt::events_string(ev));
     ev = g::backtrack(&nb, self, &nb, true);
@@ -511,9 +533,8 @@ BOOST_AUTO_TEST_CASE(backtrack_bidir_fixed_seed_o_chain) {
     set_fp(self, 0, 0, g::kM);
     for (int j = 1; j < 3; ++j) set_fp(self, 0, j, g::kNone);  // j > ds: unreachable
     for (int j = 0; j < 3; ++j) set_fp(self, -1, j, g::kM);
-    const std::vector<g::Event> want = {{0, 0, g::kM}, {4, 0, g::kD}, {3, 1, g::kD},
-                                        {2, 2, g::kM}, {1, 2, g::kO}, {1, 1, g::kO},
-                                        {1, 0, g::kM}};
+    const std::vector<g::Event> want = {{0, 0, g::kM}, {4, 0, g::kD}, {3, 1, g::kD}, {2, 2, g::kM},
+                                        {1, 2, g::kO}, {1, 1, g::kO}, {1, 0, g::kM}};
     const std::vector<g::Event> ev = g::backtrack(nullptr, self, nullptr, false);
     BOOST_TEST((ev == want), gt::events_string(ev));
 }

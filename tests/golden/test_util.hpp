@@ -40,8 +40,8 @@ inline std::string describe(const g::Params& p) {
             os << "center";
         else
             os << p.seed_col.value;
-        os << " seed_disp=" << (p.seed_disp.free ? std::string("free")
-                                                 : std::to_string(p.seed_disp.value));
+        os << " seed_disp="
+           << (p.seed_disp.free ? std::string("free") : std::to_string(p.seed_disp.value));
     }
     os << " vote=" << p.vote << " frame=" << g::to_string(p.frame);
     return os.str();
@@ -49,7 +49,8 @@ inline std::string describe(const g::Params& p) {
 
 inline std::string events_string(const std::vector<g::Event>& ev) {
     std::ostringstream os;
-    for (const g::Event& e : ev) os << "MDO?"[e.step < 3 ? e.step : 3] << "(" << e.i << "," << e.j << ")";
+    for (const g::Event& e : ev)
+        os << "MDO?"[e.step < 3 ? e.step : 3] << "(" << e.i << "," << e.j << ")";
     return os.str();
 }
 
@@ -127,8 +128,9 @@ inline void random_weights(std::mt19937& rng, g::Params& p, bool big = false) {
 // Random valid bidir seed settings for width N (N >= 2) and p.D.
 inline void random_seed(std::mt19937& rng, g::Params& p, int N) {
     const int k = uni(rng, 0, 2);
-    p.seed_col.kind = k == 0 ? g::SeedColKind::Balanced
-                             : k == 1 ? g::SeedColKind::Center : g::SeedColKind::Fixed;
+    p.seed_col.kind = k == 0   ? g::SeedColKind::Balanced
+                      : k == 1 ? g::SeedColKind::Center
+                               : g::SeedColKind::Fixed;
     p.seed_col.value = k == 2 ? uni(rng, 1, N - 1) : 0;
     p.seed_disp.free = uni(rng, 0, 1) == 0;
     p.seed_disp.value = 0;

@@ -1,0 +1,160 @@
+// imapsim golden / eval / synth / run from the outside: exit codes, one-line
+// errors naming the problem, no output file on error, outputs on success.
+#define BOOST_TEST_MODULE cli_golden
+#include <sys/wait.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+
+#include "imap/golden/stereo.hpp"
+#include "imap/vision/image_io.hpp"
+#include "imap/vision/synth.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+    const std::string cmd = std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
+    Result r;
+    FILE* p = popen(cmd.c_str(), "r");
+    BOOST_REQUIRE(p != nullptr);
+    char buf[4096];
+    size_t n = 0;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    const int st = pclose(p);
+    r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+// A fresh folder with a synthetic pair (left.png, right.png).
+struct Fixture {
+    fs::path dir;
+    Fixture() {
+        dir = fs::temp_directory_path() /
+              ("imapsim-cli-" + std::to_string(::getpid()) + "-" +
+               boost::unit_test::framework::current_test_case().p_name.get());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        const auto sc = imap::vision::make_synth_scene(7, 96, 24);
+        cv::imwrite((dir / "left.png").string(), sc.left);
+        cv::imwrite((dir / "right.png").string(), sc.right);
+    }
+    ~Fixture() { fs::remove_all(dir); }
+    std::string p(const std::string& name) const { return (dir / name).string(); }
+    std::string pair() const { return "--left " + p("left.png") + " --right " + p("right.png"); }
+};
+
+void expect_input_error(const Fixture& f, const std::string& extra, const std::string& needle) {
+    const std::string out = f.p("out.png");
+    const Result r = run("golden " + f.pair() + " --out " + out + " " + extra);
+    BOOST_TEST_CONTEXT("args: " << extra << "\noutput: " << r.out) {
+        BOOST_TEST(r.code == 2);
+        BOOST_TEST(r.out.find(needle) != std::string::npos);
+        BOOST_TEST(r.out.find("imapsim: error:") != std::string::npos);
+        BOOST_TEST(!fs::exists(out));
+    }
+}
+
+}  // namespace
+
+BOOST_FIXTURE_TEST_CASE(golden_writes_map_equal_to_library, Fixture) {
+    const Result r = run("golden " + pair() + " --out " + p("d.png") + " --D 24 --roi 4,2,80,20");
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 0);
+    BOOST_TEST(r.out.find("golden:") == 0);
+    BOOST_TEST(std::count(r.out.begin(), r.out.end(), '\n') == 1);  // one-line summary
+    const cv::Mat d = cv::imread(p("d.png"), cv::IMREAD_UNCHANGED);
+    BOOST_REQUIRE(!d.empty());
+    BOOST_TEST(d.cols == 80);
+    BOOST_TEST(d.rows == 20);
+    // Same map as the library call with the same parameters.
+    namespace g = imap::golden;
+    const cv::Mat L = imap::vision::load_grey8(p("left.png"), "left");
+    const cv::Mat R = imap::vision::load_grey8(p("right.png"), "right");
+    g::Params prm;
+    prm.D = 24;
+    const g::DisparityMap m =
+        g::compute(prm, imap::vision::view_of(L), imap::vision::view_of(R), g::Roi{4, 2, 80, 20});
+    BOOST_TEST(std::equal(m.data.begin(), m.data.end(), d.data));
+}
+
+BOOST_FIXTURE_TEST_CASE(golden_existing_output_untouched_on_error, Fixture) {
+    { std::ofstream(p("out.png")) << "previous"; }
+    const Result r = run("golden " + pair() + " --out " + p("out.png") + " --D 0");
+    BOOST_TEST(r.code == 2);
+    std::ifstream in(p("out.png"));
+    std::string content;
+    std::getline(in, content);
+    BOOST_TEST(content == "previous");
+}
+
+BOOST_FIXTURE_TEST_CASE(golden_bad_inputs, Fixture) {
+    expect_input_error(*this, "--D 0", "--D");
+    expect_input_error(*this, "--D 97", "D = 97");  // D > ROI width 96
+    expect_input_error(*this, "--D 300", "--D");
+    expect_input_error(*this, "--D abc", "'abc'");
+    expect_input_error(*this, "--km -1", "--km");
+    expect_input_error(*this, "--km 0 --kb 0", "km");
+    expect_input_error(*this, "--gb 256", "--gb");
+    expect_input_error(*this, "--Wo 5 --Wd 10", "Wo");
+    expect_input_error(*this, "--mode both", "--mode");
+    expect_input_error(*this, "--seed-col 0", "--seed-col");
+    expect_input_error(*this, "--seed-col 96", "seed-col");
+    expect_input_error(*this, "--seed-disp 99 --D 10", "seed-disp");
+    expect_input_error(*this, "--vote maybe", "--vote");
+    expect_input_error(*this, "--frame top", "--frame");
+    expect_input_error(*this, "--roi 90,0,10,10", "ROI");
+    expect_input_error(*this, "--roi 0,20,10,10", "ROI");
+    expect_input_error(*this, "--roi 1,2,3", "--roi");
+}
+
+BOOST_FIXTURE_TEST_CASE(golden_bad_files, Fixture) {
+    const Result missing = run("golden --left " + p("nope.png") + " --right " + p("right.png") +
+                               " --out " + p("o.png"));
+    BOOST_TEST(missing.code == 2);
+    BOOST_TEST(missing.out.find("nope.png") != std::string::npos);
+    BOOST_TEST(!fs::exists(p("o.png")));
+
+    cv::imwrite(p("small.png"), cv::Mat(10, 10, CV_8UC1, cv::Scalar(3)));
+    const Result mismatch = run("golden --left " + p("left.png") + " --right " + p("small.png") +
+                                " --out " + p("o.png"));
+    BOOST_TEST(mismatch.code == 2);
+    BOOST_TEST(mismatch.out.find("size") != std::string::npos);
+    BOOST_TEST(!fs::exists(p("o.png")));
+
+    const Result badext = run("golden " + pair() + " --out " + p("o.nosuchformat"));
+    BOOST_TEST(badext.code == 2);
+    BOOST_TEST(!fs::exists(p("o.nosuchformat")));
+}
+
+BOOST_FIXTURE_TEST_CASE(synth_then_eval_scores_the_scene, Fixture) {
+    const Result s = run("synth --seed 3 --size 128x48 --out-dir " + p("scene"));
+    BOOST_TEST_INFO(s.out);
+    BOOST_REQUIRE(s.code == 0);
+    for (const char* f : {"left.png", "right.png", "gt.png"})
+        BOOST_TEST(fs::exists(p("scene/") + f));
+    const Result e =
+        run("eval --scene " + p("scene") + " --gt-scale 1 --D 49 --json " + p("e.json"));
+    BOOST_TEST_INFO(e.out);
+    BOOST_TEST(e.code == 0);
+    BOOST_TEST(fs::exists(p("e.json")));
+    BOOST_TEST(e.out.find("golden") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(main_job_without_arguments) {
+    const Result r = run("");
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 0);
+    BOOST_TEST(r.out.find("synthetic scene") != std::string::npos);
+    BOOST_TEST(r.out.find("bad-1") != std::string::npos);
+}
