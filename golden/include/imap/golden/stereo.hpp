@@ -46,7 +46,10 @@ struct Event {
 //  - single: `right` holds bp(i,j) for sites 0..N-1.
 //  - bidir : `right` holds bp(i,j) for sites s..N-1 (site s: kO above a fixed
 //            seed, kM at the seed / every level when free, kNone below);
-//            `left` holds fp(i,j) for sites -1..s-1.
+//            `left` holds fp(i,j) for sites -1..s-1 (site s-1: kO below a
+//            fixed seed, kM at the seed / every level when free, kNone above).
+// The O steps down to a fixed seed (right) are recorded as O events before
+// the seed's M event; only M events reach the output maps.
 // Entry (i, j) of a table with first site f is at [(i - f) * D + j]; invalid
 // states (i + j > N - 1) hold kNone.
 struct LineTables {
