@@ -1,0 +1,48 @@
+// Host side of the DP firmware: the per-PE memory plan for a parameter set,
+// the range checks that make 24-bit costs exact, and assembly of the
+// firmware with the plan's constants (docs/firmware.md).
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "imap/golden/params.hpp"
+#include "imap/isa/config.hpp"
+#include "imap/isa/program.hpp"
+
+namespace imap::firmware {
+
+// A parameter set the firmware cannot run (range or memory); the message
+// says what is needed and what is available.
+class FirmwareError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+inline constexpr int64_t kInf = int64_t{1} << 23;  // unreachable cost
+
+// Memory plan of the forward pass for one scanline length N.
+struct ForwardPlan {
+    int N = 0, D = 0;
+    bool bidir = false;
+    int s = 0;        // seed column (bidir)
+    int ds = -1;      // seed disparity, -1 = free
+    int kmax = 0;     // columns computed after the start column
+    int dq = 0;       // packed pointer bytes per column = ceil(D / 4)
+    int imgr = 0, imgl = 0, c0 = 0, c1 = 0, c2 = 0, pbuf = 0;  // local addresses
+    int mem_needed = 0;     // bytes of local memory per PE
+    int64_t ext_needed = 0;  // bytes of external memory per PE
+};
+
+// Checks the cost range (24-bit exactness) and plans the memory; throws
+// FirmwareError when the set does not fit `cfg`.
+ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg);
+
+// Folder of the firmware sources.
+std::string firmware_dir();
+
+// Assembles the stand-alone forward-pass program for a plan.
+isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& plan);
+
+}  // namespace imap::firmware
