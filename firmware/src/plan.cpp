@@ -55,6 +55,12 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     a += p.D + 1;
     f.pbuf = a;
     a += f.dq;
+    f.vbuf = a;
+    a += f.dq;
+    f.map = a;
+    a += N;
+    f.kbase = a;
+    a += 17;  // K_SIZE in dp_back.inc
     f.mem_needed = a;
     f.ext_needed = int64_t{f.kmax} * f.dq;
     if (f.mem_needed > int64_t{cfg.mem_bytes} || f.ext_needed > int64_t{cfg.ext_bytes}) {
@@ -69,6 +75,11 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
 }
 
 isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& f) {
+    return assemble(p, f, "dp_forward_test.s", {});
+}
+
+isa::Program assemble(const golden::Params& p, const ForwardPlan& f, const std::string& file,
+                      const std::map<std::string, int64_t>& extra) {
     isa::AsmOptions o;
     o.defines = {{"MODE", f.bidir ? 1 : 0},
                  {"N", f.N},
@@ -87,8 +98,16 @@ isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& f) {
                  {"COST0", f.c0},
                  {"COST1", f.c1},
                  {"COST2", f.c2},
-                 {"PBUF", f.pbuf}};
-    return isa::assemble_file(firmware_dir() + "/dp_forward_test.s", o);
+                 {"PBUF", f.pbuf},
+                 {"VBUF", f.vbuf},
+                 {"MAP", f.map},
+                 {"K_BASE", f.kbase},
+                 {"FRAME", p.frame == golden::Frame::Cyclopean ? 0
+                           : p.frame == golden::Frame::Left    ? 1
+                                                               : 2},
+                 {"VOTE", p.vote ? 1 : 0}};
+    for (const auto& [k, v] : extra) o.defines[k] = v;
+    return isa::assemble_file(firmware_dir() + "/" + file, o);
 }
 
 }  // namespace imap::firmware

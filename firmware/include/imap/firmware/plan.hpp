@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,7 @@ struct ForwardPlan {
     int kmax = 0;     // columns computed after the start column
     int dq = 0;       // packed pointer bytes per column = ceil(D / 4)
     int imgr = 0, imgl = 0, c0 = 0, c1 = 0, c2 = 0, pbuf = 0;  // local addresses
+    int vbuf = 0, map = 0, kbase = 0;
     int mem_needed = 0;     // bytes of local memory per PE
     int64_t ext_needed = 0;  // bytes of external memory per PE
 };
@@ -44,5 +46,10 @@ std::string firmware_dir();
 
 // Assembles the stand-alone forward-pass program for a plan.
 isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& plan);
+
+// Assembles `file` (in firmware_dir()) with the plan's constants, the
+// algorithm's (FRAME, VOTE) and `extra` (e.g. HROI, HB).
+isa::Program assemble(const golden::Params& p, const ForwardPlan& plan, const std::string& file,
+                      const std::map<std::string, int64_t>& extra);
 
 }  // namespace imap::firmware

@@ -1,0 +1,101 @@
+// Helpers shared by the firmware tests: parameter sets, line buffers.
+#pragma once
+
+#include <boost/test/unit_test.hpp>
+#include <random>
+#include <sstream>
+
+#include "imap/firmware/plan.hpp"
+#include "imap/golden/stereo.hpp"
+#include "imap/isa/machine.hpp"
+
+namespace fwtest {
+
+namespace g = imap::golden;
+namespace fw = imap::firmware;
+namespace isa = imap::isa;
+
+
+struct Line {
+    std::vector<uint8_t> L, R;
+};
+
+inline std::string describe(const g::Params& p, int N, int H) {
+    std::ostringstream os;
+    os << "N=" << N << " H=" << H << " D=" << p.D << " mode=" << g::to_string(p.mode)
+       << " seed=" << g::seed_col_string(p.seed_col) << "/" << g::seed_disp_string(p.seed_disp)
+       << " km=" << p.km << " kb=" << p.kb << " gb=" << p.gb << " Wo=" << p.Wo
+       << " Wd=" << p.Wd;
+    return os.str();
+}
+
+// Fills the PE's R' / L' buffers as docs/firmware.md section 1 lays them out.
+inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, const Line& ln, bool left) {
+    auto put = [&](int base, int idx, int v) { m.mem_write(pe, uint32_t(base + idx), uint8_t(v)); };
+    const int N = f.N;
+    for (int k = 0; k <= f.kmax; ++k) {
+        int x = -1;
+        if (!f.bidir)
+            x = k - 1;
+        else
+            x = left ? f.s - k : f.s + k;
+        put(f.imgr, k, x >= 0 && x < N ? ln.R[x] : 0);
+    }
+    for (int mi = 0; mi < f.kmax + f.D + 1; ++mi) {
+        int x = -1;
+        if (!f.bidir)
+            x = mi - 1;
+        else
+            x = left ? f.s + f.D - 1 - mi : f.s + mi;
+        put(f.imgl, mi, x >= 0 && x < N ? ln.L[x] : 0);
+    }
+}
+
+
+// Random lines: the left line is the right line shifted by a random
+// disparity plus noise, so the DP has real structure.
+inline std::vector<Line> random_lines(std::mt19937& rng, int N, int H, int D) {
+    std::vector<Line> lines(static_cast<size_t>(H));
+    std::uniform_int_distribution<int> pix(0, 255);
+    for (auto& ln : lines) {
+        ln.L.resize(size_t(N));
+        ln.R.resize(size_t(N));
+        for (int x = 0; x < N; ++x) ln.R[size_t(x)] = uint8_t(pix(rng));
+        const int shift = std::uniform_int_distribution<int>(0, D - 1)(rng);
+        for (int x = 0; x < N; ++x)
+            ln.L[size_t(x)] = x - shift >= 0
+                                  ? uint8_t(std::min(255, ln.R[size_t(x - shift)] + pix(rng) % 9))
+                                  : uint8_t(pix(rng));
+    }
+    return lines;
+}
+
+// A random valid parameter set for scanlines of length N.
+inline g::Params random_params(std::mt19937& rng, int N) {
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    g::Params p;
+    p.D = uni(1, std::min(N, 40));
+    p.km = uni(0, 20);
+    p.kb = uni(0, 4);
+    if (p.km == 0 && p.kb == 0) p.km = 1;
+    p.gb = uni(0, 255);
+    p.Wd = uni(0, 200);
+    p.Wo = p.Wd + uni(0, 200);
+    p.mode = (uni(0, 1) && N >= 2) ? g::Mode::Bidir : g::Mode::Single;
+    const int sc = uni(0, 2);
+    p.seed_col.kind = sc == 0   ? g::SeedColKind::Balanced
+                      : sc == 1 ? g::SeedColKind::Center
+                                : g::SeedColKind::Fixed;
+    p.seed_col.value = uni(1, std::max(1, N - 1));
+    p.seed_disp.free = uni(0, 1) == 0;
+    if (p.mode == g::Mode::Bidir && !p.seed_disp.free) {
+        const int s = g::resolve_seed_col(p, N);
+        p.seed_disp.value = uni(0, std::min(p.D - 1, N - 1 - s));
+    }
+    p.vote = uni(0, 3) != 0;
+    const int fr = uni(0, 2);
+    p.frame = fr == 0 ? g::Frame::Cyclopean : fr == 1 ? g::Frame::Left : g::Frame::Right;
+    return p;
+}
+
+}  // namespace fwtest
