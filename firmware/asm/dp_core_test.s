@@ -7,6 +7,7 @@
         cli     c8, #0
         cli     c9, #HB
         DP_SETUP
+        DP_CLEARMAP
         DP_INIT
         DP_FORWARD
         DP_BACKTRACK

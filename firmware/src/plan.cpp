@@ -60,7 +60,7 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     f.map = a;
     a += N;
     f.kbase = a;
-    a += 17;  // K_SIZE in dp_back.inc
+    a += 21;  // K_SIZE in dp_back.inc + 4 bytes of relayout.inc
     f.mem_needed = a;
     f.ext_needed = int64_t{f.kmax} * f.dq;
     if (f.mem_needed > int64_t{cfg.mem_bytes} || f.ext_needed > int64_t{cfg.ext_bytes}) {
@@ -72,6 +72,104 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
         throw FirmwareError(os.str());
     }
     return f;
+}
+
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
+                     const isa::MachineConfig& cfg) {
+    FramePlan fp;
+    fp.roi = roi;
+    fp.P = static_cast<int>(cfg.pes);
+    fp.f = plan_forward(p, roi.w, cfg);  // range and DP memory checks
+    const bool bidir = p.mode == golden::Mode::Bidir;
+    fp.lpb = bidir ? fp.P / 2 : fp.P;
+    if (fp.lpb < 1) {
+        std::ostringstream os;
+        os << "too few PEs: bidir mode needs 2 PEs per line, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
+    const int H = roi.h;
+    if (H <= fp.lpb) {
+        fp.batches.push_back({0, H, 0, H});
+    } else {
+        const bool overlap = p.vote;
+        const int stride = overlap ? fp.lpb - 2 : fp.lpb;
+        if (stride < 1) {
+            std::ostringstream os;
+            os << "too few PEs for the vote across batches: " << fp.P << " PEs hold " << fp.lpb
+               << " line(s) per batch, the vote needs 3 (use >= " << (bidir ? 6 : 3)
+               << " PEs, --vote off, or a ROI of at most " << fp.lpb << " lines)";
+            throw FirmwareError(os.str());
+        }
+        for (int o = 0; o < H; o += stride) {
+            const int oe = std::min(H, o + stride);
+            const int first = overlap ? std::max(0, o - 1) : o;
+            const int last = overlap ? std::min(H, oe + 1) : oe;
+            fp.batches.push_back({first, last - first, o - first, oe - o});
+        }
+    }
+    if (static_cast<int>(fp.batches.size()) > kMaxBatches) {
+        std::ostringstream os;
+        os << "ROI of " << H << " lines needs " << fp.batches.size() << " batches on " << fp.P
+           << " PEs; the firmware's batch table holds " << kMaxBatches
+           << " (use more PEs or a shorter ROI)";
+        throw FirmwareError(os.str());
+    }
+    for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
+    fp.nseg = (roi.w + fp.P - 1) / fp.P;
+
+    // Video rows share memory with buffers that are idle while they live:
+    // IN rows (during the input re-layout) with the cost planes .. map,
+    // OUT rows (during the output re-layout) with the line buffers.
+    int end = fp.f.mem_needed;
+    const ForwardPlan& f = fp.f;
+    if (2 * fp.hbmax <= f.kbase - f.c0) {
+        fp.inl = f.c0;
+    } else {
+        fp.inl = end;
+        end += 2 * fp.hbmax;
+    }
+    fp.inr = fp.inl + fp.hbmax;
+    if (fp.hbmax <= f.c0 - f.imgr) {
+        fp.out = f.imgr;
+    } else {
+        fp.out = end;
+        end += fp.hbmax;
+    }
+    fp.mem_needed = end;
+    fp.ext_needed = f.ext_needed;
+    if (fp.mem_needed > int64_t{cfg.mem_bytes}) {
+        std::ostringstream os;
+        os << "does not fit: needs " << fp.mem_needed << " bytes of local memory per PE, have "
+           << cfg.mem_bytes;
+        throw FirmwareError(os.str());
+    }
+    return fp;
+}
+
+isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
+    return assemble(p, fp.f, "dp.s",
+                    {{"P", fp.P},
+                     {"HROI", fp.roi.h},
+                     {"X0", fp.roi.x0},
+                     {"Y0", fp.roi.y0},
+                     {"NSEG", fp.nseg},
+                     {"INL", fp.inl},
+                     {"INR", fp.inr},
+                     {"OUT", fp.out}});
+}
+
+std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
+    std::vector<std::pair<int, uint32_t>> v;
+    v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));
+    for (size_t b = 0; b < fp.batches.size(); ++b) {
+        const Batch& t = fp.batches[b];
+        const int base = 1 + 4 * static_cast<int>(b);
+        v.emplace_back(base + 0, uint32_t(t.first));
+        v.emplace_back(base + 1, uint32_t(t.lines));
+        v.emplace_back(base + 2, uint32_t(t.out_first));
+        v.emplace_back(base + 3, uint32_t(t.out_count));
+    }
+    return v;
 }
 
 isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& f) {

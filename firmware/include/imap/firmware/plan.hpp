@@ -7,8 +7,11 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "imap/golden/params.hpp"
+#include "imap/golden/stereo.hpp"
 #include "imap/isa/config.hpp"
 #include "imap/isa/program.hpp"
 
@@ -51,5 +54,38 @@ isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& plan);
 // algorithm's (FRAME, VOTE) and `extra` (e.g. HROI, HB).
 isa::Program assemble(const golden::Params& p, const ForwardPlan& plan, const std::string& file,
                       const std::map<std::string, int64_t>& extra);
+
+// One batch of ROI lines processed together (lines first .. first+lines-1,
+// of which out_count starting at batch line out_first are written out).
+struct Batch {
+    int first = 0, lines = 0, out_first = 0, out_count = 0;
+};
+
+// Everything the full firmware (dp.s) needs for one frame.
+struct FramePlan {
+    ForwardPlan f;
+    golden::Roi roi;
+    int P = 0;
+    int lpb = 0;    // lines per batch (P/2 bidir, P single)
+    int hbmax = 0;  // most lines in one batch
+    int nseg = 0;   // segments of P pixels per ROI line
+    int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
+    std::vector<Batch> batches;
+    int mem_needed = 0;      // local bytes per PE
+    int64_t ext_needed = 0;  // external bytes per PE
+};
+
+inline constexpr int kMaxBatches = 62;  // batch table in the param block
+
+// Plans a frame: the forward plan, batches (overlapping by one line at inner
+// edges when the vote is on), video rows, memory. FirmwareError when the
+// set cannot run on `cfg` (what is needed vs available).
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg);
+
+// Assembles dp.s for a frame plan.
+isa::Program assemble_frame(const golden::Params& p, const FramePlan& plan);
+
+// The param block words of a frame plan (index, value).
+std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& plan);
 
 }  // namespace imap::firmware
