@@ -26,13 +26,18 @@ batch:
         RELAYOUT_CONSTS
 .set GI 0
 .rept NSEG
-        RELAYOUT_IN GI
+.if SPLIT_IN
+        RELAYOUT_IN GI, 1
+        RELAYOUT_IN GI, 2
+.else
+        RELAYOUT_IN GI, 0
+.endif
 .set GI GI + 1
 .endr
-.phase setup
-        DP_CLEARMAP
         DP_INIT
         DP_FORWARD
+.phase backtrack
+        DP_CLEARMAP
         DP_BACKTRACK
         DP_MERGE
         cld     c0, [#BATCH_IDX]

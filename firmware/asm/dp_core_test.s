@@ -7,9 +7,9 @@
         cli     c8, #0
         cli     c9, #HB
         DP_SETUP
-        DP_CLEARMAP
         DP_INIT
         DP_FORWARD
+        DP_CLEARMAP
         DP_BACKTRACK
         DP_MERGE
         halt

@@ -7,7 +7,9 @@
 
 namespace imap::firmware {
 
-std::string firmware_dir() { return IMAP_FIRMWARE_DIR; }
+std::string firmware_dir() {
+    return IMAP_FIRMWARE_DIR;
+}
 
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
     golden::validate_for_width(p, N);
@@ -57,8 +59,7 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     a += f.dq;
     f.vbuf = a;
     a += f.dq;
-    f.map = a;
-    a += N;
+    f.map = f.imgr;  // the output line reuses the line buffers after the forward pass
     f.kbase = a;
     a += 21;  // K_SIZE in dp_back.inc + 4 bytes of relayout.inc
     f.mem_needed = a;
@@ -67,8 +68,7 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
         std::ostringstream os;
         os << "does not fit: needs " << f.mem_needed << " bytes of local memory per PE (have "
            << cfg.mem_bytes << ") and " << f.ext_needed
-           << " bytes of external memory per PE for the pointers (have " << cfg.ext_bytes
-           << ")";
+           << " bytes of external memory per PE for the pointers (have " << cfg.ext_bytes << ")";
         throw FirmwareError(os.str());
     }
     return f;
@@ -76,6 +76,10 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
+    if (!cfg.indirect)
+        throw FirmwareError(
+            "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
+            "backtrack: set indirect=on");
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
@@ -118,19 +122,23 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
 
     // Video rows share memory with buffers that are idle while they live:
-    // IN rows (during the input re-layout) with the cost planes .. map,
-    // OUT rows (during the output re-layout) with the line buffers.
+    // IN rows (input re-layout) and OUT rows (output re-layout, while the map
+    // in the line-buffer area is read) both go to the cost planes and pointer
+    // buffers when they fit there.
     int end = fp.f.mem_needed;
     const ForwardPlan& f = fp.f;
-    if (2 * fp.hbmax <= f.kbase - f.c0) {
+    const int spare = f.kbase - f.c0;
+    fp.split_in = 2 * fp.hbmax > spare;  // one image per re-layout pass
+    const int in_rows = fp.split_in ? fp.hbmax : 2 * fp.hbmax;
+    if (in_rows <= spare) {
         fp.inl = f.c0;
     } else {
         fp.inl = end;
-        end += 2 * fp.hbmax;
+        end += in_rows;
     }
     fp.inr = fp.inl + fp.hbmax;
-    if (fp.hbmax <= f.c0 - f.imgr) {
-        fp.out = f.imgr;
+    if (fp.hbmax <= spare) {
+        fp.out = f.c0;
     } else {
         fp.out = end;
         end += fp.hbmax;
@@ -155,7 +163,8 @@ isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
                      {"NSEG", fp.nseg},
                      {"INL", fp.inl},
                      {"INR", fp.inr},
-                     {"OUT", fp.out}});
+                     {"OUT", fp.out},
+                     {"SPLIT_IN", fp.split_in ? 1 : 0}});
 }
 
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {

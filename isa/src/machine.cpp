@@ -272,17 +272,18 @@ struct Exec {
     template <bool Left>
     static void ring(Machine& m, const Decoded& d) {
         const size_t P = static_cast<size_t>(m.P_);
-        const size_t k = static_cast<size_t>(d.imm) % P;
+        uint8_t* dst = m.lanes_.data() + d.d;
         const uint8_t* a = m.lanes_.data() + d.a;
-        uint8_t* s = m.scratch_;
-        if constexpr (Left) {
-            std::memcpy(s + k, a, P - k);
-            std::memcpy(s, a + P - k, k);
-        } else {
-            std::memcpy(s, a + k, P - k);
-            std::memcpy(s + P - k, a, k);
-        }
-        write_masked(m, d.d, s);
+        if (m.ring_)
+            m.ring_->shift(dst, a, m.m_, m.P_, d.imm, Left);
+        else
+            ring_shift<Left>(dst, a, m.m_, m.scratch_, P, static_cast<size_t>(d.imm));
+    }
+
+    template <bool Any>
+    static uint32_t status(Machine& m) {
+        if (m.status_) return m.status_->reduce(m.t_, m.m_, m.P_, Any);
+        return status_reduce<Any>(m.t_, m.m_, static_cast<size_t>(m.P_));
     }
 
     static void branch(Machine& m, const Decoded& d, bool taken) {
@@ -300,12 +301,14 @@ struct Exec {
         const int64_t y = cpv(m, d.aux & 15u), x = cpv(m, d.aux >> 4);
         uint8_t* row = m.mem_.data() + static_cast<size_t>(addr) * P;
         try {
+            const int port = static_cast<int>(d.d), yi = static_cast<int>(y),
+                      xi = static_cast<int>(x);
+            const uint32_t a = static_cast<uint32_t>(addr);
             if (out) {
-                m.video_->write_line(static_cast<int>(d.d), static_cast<int>(y),
-                                     static_cast<int>(x), row, m.P_);
-            } else {
-                m.video_->read_line(static_cast<int>(d.d), static_cast<int>(y), static_cast<int>(x),
-                                    m.scratch_, m.P_);
+                if (!m.video_->write_row(port, yi, xi, a, m.P_))
+                    m.video_->write_line(port, yi, xi, row, m.P_);
+            } else if (!m.video_->read_row(port, yi, xi, a, m.P_)) {
+                m.video_->read_line(port, yi, xi, m.scratch_, m.P_);
                 std::memcpy(row, m.scratch_, P);
             }
         } catch (const std::exception& e) {
@@ -392,18 +395,8 @@ struct Exec {
             std::memset(m.m_, 1, P);
             m.msp_ = 0;
             m.active_ = m.P_;
-        } else if constexpr (O == Op::RANY) {
-            const uint8_t* t = m.t_;
-            const uint8_t* mk = m.m_;
-            uint8_t acc = 0;
-            for (size_t p = 0; p < P; ++p) acc = static_cast<uint8_t>(acc | (t[p] & mk[p]));
-            c[d.d] = acc;
-        } else if constexpr (O == Op::RALL) {
-            const uint8_t* t = m.t_;
-            const uint8_t* mk = m.m_;
-            uint8_t acc = 1;
-            for (size_t p = 0; p < P; ++p) acc = static_cast<uint8_t>(acc & (t[p] | (mk[p] ^ 1u)));
-            c[d.d] = acc;
+        } else if constexpr (O == Op::RANY || O == Op::RALL) {
+            c[d.d] = status<O == Op::RANY>(m);
         } else if constexpr (O == Op::VIN || O == Op::VOUT) {
             video(m, d, O == Op::VOUT);
         } else if constexpr (O == Op::NOP) {

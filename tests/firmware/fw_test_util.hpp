@@ -15,7 +15,6 @@ namespace g = imap::golden;
 namespace fw = imap::firmware;
 namespace isa = imap::isa;
 
-
 struct Line {
     std::vector<uint8_t> L, R;
 };
@@ -24,13 +23,13 @@ inline std::string describe(const g::Params& p, int N, int H) {
     std::ostringstream os;
     os << "N=" << N << " H=" << H << " D=" << p.D << " mode=" << g::to_string(p.mode)
        << " seed=" << g::seed_col_string(p.seed_col) << "/" << g::seed_disp_string(p.seed_disp)
-       << " km=" << p.km << " kb=" << p.kb << " gb=" << p.gb << " Wo=" << p.Wo
-       << " Wd=" << p.Wd;
+       << " km=" << p.km << " kb=" << p.kb << " gb=" << p.gb << " Wo=" << p.Wo << " Wd=" << p.Wd;
     return os.str();
 }
 
 // Fills the PE's R' / L' buffers as docs/firmware.md section 1 lays them out.
-inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, const Line& ln, bool left) {
+inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, const Line& ln,
+                         bool left) {
     auto put = [&](int base, int idx, int v) { m.mem_write(pe, uint32_t(base + idx), uint8_t(v)); };
     const int N = f.N;
     for (int k = 0; k <= f.kmax; ++k) {
@@ -50,7 +49,6 @@ inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, cons
         put(f.imgl, mi, x >= 0 && x < N ? ln.L[x] : 0);
     }
 }
-
 
 // Random lines: the left line is the right line shifted by a random
 // disparity plus noise, so the DP has real structure.
@@ -96,6 +94,54 @@ inline g::Params random_params(std::mt19937& rng, int N) {
     const int fr = uni(0, 2);
     p.frame = fr == 0 ? g::Frame::Cyclopean : fr == 1 ? g::Frame::Left : g::Frame::Right;
     return p;
+}
+
+struct Frame {
+    int W = 0, H = 0;
+    std::vector<uint8_t> L, R;
+};
+
+inline Frame random_frame(std::mt19937& rng, int W, int H, int D) {
+    Frame f;
+    f.W = W;
+    f.H = H;
+    const std::vector<Line> lines = random_lines(rng, W, H, std::max(1, std::min(D, W)));
+    for (const Line& ln : lines) {
+        f.L.insert(f.L.end(), ln.L.begin(), ln.L.end());
+        f.R.insert(f.R.end(), ln.R.begin(), ln.R.end());
+    }
+    return f;
+}
+
+inline void check_frame(const g::Params& p, const Frame& fr, const g::Roi& roi, int P,
+                        uint64_t* cycles = nullptr) {
+    isa::MachineConfig cfg;
+    cfg.pes = uint32_t(P);
+    const fw::FramePlan plan = fw::plan_frame(p, roi, cfg);
+    const isa::Program prog = fw::assemble_frame(p, plan);
+    isa::Machine m(cfg);
+    m.load(prog);
+    for (const auto& [i, v] : fw::param_block(plan)) m.set_param(i, v);
+    isa::ImageVideoPort video;
+    video.input[0] = {fr.W, fr.H, fr.L};
+    video.input[1] = {fr.W, fr.H, fr.R};
+    video.make_output(0, roi.w, roi.h);
+    m.set_video(&video);
+    m.run();
+    BOOST_REQUIRE(m.halted());
+    if (cycles) *cycles = m.cycles();
+
+    const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), fr.W, fr.H, fr.W},
+                                            g::ImageView{fr.R.data(), fr.W, fr.H, fr.W}, roi);
+    int bad = 0;
+    for (int y = 0; y < roi.h; ++y)
+        for (int x = 0; x < roi.w; ++x) {
+            const int got = video.output[0].pixels[size_t(y) * roi.w + x];
+            const int exp = want.at(x, y);
+            if (got != exp && ++bad <= 5)
+                BOOST_ERROR("(" << x << "," << y << "): firmware " << got << " golden " << exp);
+        }
+    BOOST_TEST(bad == 0);
 }
 
 }  // namespace fwtest

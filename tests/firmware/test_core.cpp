@@ -59,7 +59,9 @@ BOOST_AUTO_TEST_CASE(headline_sized_lines) {
     std::mt19937 rng(3);
     g::Params p;
     p.D = 64;
-    BOOST_TEST_CONTEXT(describe(p, 128, 6)) { check_core(p, 128, 6, rng); }
+    BOOST_TEST_CONTEXT(describe(p, 128, 6)) {
+        check_core(p, 128, 6, rng);
+    }
 }
 
 BOOST_AUTO_TEST_CASE(random_parameter_sets) {
@@ -68,8 +70,8 @@ BOOST_AUTO_TEST_CASE(random_parameter_sets) {
         const int N = std::uniform_int_distribution<int>(2, 40)(rng);
         const g::Params p = random_params(rng, N);
         const int H = std::uniform_int_distribution<int>(1, 5)(rng);
-        BOOST_TEST_CONTEXT(describe(p, N, H) << " vote=" << p.vote << " frame="
-                                             << g::to_string(p.frame)) {
+        BOOST_TEST_CONTEXT(describe(p, N, H)
+                           << " vote=" << p.vote << " frame=" << g::to_string(p.frame)) {
             check_core(p, N, H, rng);
         }
     }

@@ -6,10 +6,10 @@
 #include <random>
 #include <sstream>
 
+#include "fw_test_util.hpp"
 #include "imap/firmware/plan.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
-#include "fw_test_util.hpp"
 
 namespace g = imap::golden;
 namespace fw = imap::firmware;
@@ -94,7 +94,9 @@ BOOST_AUTO_TEST_CASE(headline_sized_line_default_weights) {
     std::mt19937 rng(1);
     g::Params p;  // defaults: bidir, balanced seed, free
     p.D = 64;
-    BOOST_TEST_CONTEXT(describe(p, 128, 4)) { check_case(p, 128, 4, rng); }
+    BOOST_TEST_CONTEXT(describe(p, 128, 4)) {
+        check_case(p, 128, 4, rng);
+    }
 }
 
 BOOST_AUTO_TEST_CASE(random_parameter_sets) {
@@ -104,7 +106,9 @@ BOOST_AUTO_TEST_CASE(random_parameter_sets) {
         const int N = uni(2, 40);
         const g::Params p = random_params(rng, N);
         const int H = uni(1, 4);
-        BOOST_TEST_CONTEXT(describe(p, N, H)) { check_case(p, N, H, rng); }
+        BOOST_TEST_CONTEXT(describe(p, N, H)) {
+            check_case(p, N, H, rng);
+        }
     }
 }
 

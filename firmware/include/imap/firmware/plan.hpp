@@ -30,13 +30,14 @@ inline constexpr int64_t kInf = int64_t{1} << 23;  // unreachable cost
 struct ForwardPlan {
     int N = 0, D = 0;
     bool bidir = false;
-    int s = 0;        // seed column (bidir)
-    int ds = -1;      // seed disparity, -1 = free
-    int kmax = 0;     // columns computed after the start column
-    int dq = 0;       // packed pointer bytes per column = ceil(D / 4)
+    int s = 0;     // seed column (bidir)
+    int ds = -1;   // seed disparity, -1 = free
+    int kmax = 0;  // columns computed after the start column
+    int dq = 0;    // packed pointer bytes per column = ceil(D / 4)
     int imgr = 0, imgl = 0, c0 = 0, c1 = 0, c2 = 0, pbuf = 0;  // local addresses
-    int vbuf = 0, map = 0, kbase = 0;
-    int mem_needed = 0;     // bytes of local memory per PE
+    int vbuf = 0, kbase = 0;
+    int map = 0;             // output line: reuses the line buffers after the forward pass
+    int mem_needed = 0;      // bytes of local memory per PE
     int64_t ext_needed = 0;  // bytes of external memory per PE
 };
 
@@ -66,10 +67,11 @@ struct FramePlan {
     ForwardPlan f;
     golden::Roi roi;
     int P = 0;
-    int lpb = 0;    // lines per batch (P/2 bidir, P single)
-    int hbmax = 0;  // most lines in one batch
-    int nseg = 0;   // segments of P pixels per ROI line
+    int lpb = 0;                    // lines per batch (P/2 bidir, P single)
+    int hbmax = 0;                  // most lines in one batch
+    int nseg = 0;                   // segments of P pixels per ROI line
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
+    bool split_in = false;          // input re-layout one image at a time (memory)
     std::vector<Batch> batches;
     int mem_needed = 0;      // local bytes per PE
     int64_t ext_needed = 0;  // external bytes per PE
@@ -80,7 +82,8 @@ inline constexpr int kMaxBatches = 62;  // batch table in the param block
 // Plans a frame: the forward plan, batches (overlapping by one line at inner
 // edges when the vote is on), video rows, memory. FirmwareError when the
 // set cannot run on `cfg` (what is needed vs available).
-FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg);
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
+                     const isa::MachineConfig& cfg);
 
 // Assembles dp.s for a frame plan.
 isa::Program assemble_frame(const golden::Params& p, const FramePlan& plan);

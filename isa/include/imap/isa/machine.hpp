@@ -12,6 +12,7 @@
 
 #include "imap/isa/config.hpp"
 #include "imap/isa/encoding.hpp"
+#include "imap/isa/interconnect.hpp"
 #include "imap/isa/opcodes.hpp"
 #include "imap/isa/program.hpp"
 
@@ -59,6 +60,20 @@ class VideoPort {
     // Pixel (x0 + i, y) of output image `port` = src[i]; pixels outside the
     // image width are ignored.
     virtual void write_line(int port, int y, int x0, const uint8_t* src, int n) = 0;
+
+    // Optional row-level path, for a port that reaches the PE memories itself
+    // (the TLM model moves the line through the array's DMI pointer). `addr`
+    // is the local-memory row of the vin / vout (already range-checked); the
+    // row is the n bytes at mem_data() + addr * n. Return true when the port
+    // moved the line; it must then leave memory (vin) or the output image
+    // (vout) unchanged when it throws. The defaults return false and the
+    // machine uses read_line / write_line with its own row copy.
+    virtual bool read_row(int /*port*/, int /*y*/, int /*x0*/, uint32_t /*addr*/, int /*n*/) {
+        return false;
+    }
+    virtual bool write_row(int /*port*/, int /*y*/, int /*x0*/, uint32_t /*addr*/, int /*n*/) {
+        return false;
+    }
 };
 
 // A VideoPort over in-memory 8-bit images (tests and tools).
@@ -145,6 +160,13 @@ class Machine {
     void reset();
 
     void set_video(VideoPort* v) { video_ = v; }
+    // Optional components for the shift ring and the status reduction
+    // (interconnect.hpp); nullptr (the default) = the built-in code. Same
+    // semantics either way; one virtual call per rxl / rxr / rany / rall.
+    void set_ring(RingPort* r) { ring_ = r; }
+    void set_status(StatusPort* s) { status_ = s; }
+    RingPort* ring() const { return ring_; }
+    StatusPort* status() const { return status_; }
     // Attach / detach (nullptr) an observer. Costs nothing when detached.
     void set_observer(Observer* o) { observer_ = o; }
 
@@ -236,6 +258,8 @@ class Machine {
 
     VideoPort* video_ = nullptr;
     Observer* observer_ = nullptr;
+    RingPort* ring_ = nullptr;
+    StatusPort* status_ = nullptr;
 };
 
 }  // namespace imap::isa

@@ -1,0 +1,36 @@
+// Running the DP firmware on a frame: the result every model reports.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "imap/firmware/plan.hpp"
+#include "imap/golden/stereo.hpp"
+#include "imap/isa/machine.hpp"
+
+namespace imap::firmware {
+
+struct FrameResult {
+    golden::DisparityMap map;  // ROI-sized, from the video output
+    uint64_t cycles = 0;
+    double modeled_ms = 0;
+    std::vector<std::pair<std::string, uint64_t>> phases;  // name, cycles (non-zero only)
+    isa::Stats stats;
+    double wall_s = 0;
+};
+
+// Phase table of a finished machine (names from the program, zero phases
+// left out).
+std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m);
+
+// Runs one frame on the bare machine core (the executor every model wraps).
+FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
+                           const golden::ImageView& left, const golden::ImageView& right,
+                           const isa::MachineConfig& cfg);
+
+// Copies an image view into a video-port image.
+isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v);
+
+}  // namespace imap::firmware

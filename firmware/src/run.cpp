@@ -1,0 +1,51 @@
+#include "imap/firmware/run.hpp"
+
+#include <chrono>
+
+namespace imap::firmware {
+
+std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m) {
+    std::vector<std::pair<std::string, uint64_t>> t;
+    const auto& pc = m.phase_cycles();
+    for (size_t i = 0; i < pc.size(); ++i)
+        if (pc[i] > 0) t.emplace_back(m.program().phase_name(static_cast<uint32_t>(i)), pc[i]);
+    return t;
+}
+
+isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {
+    isa::ImageVideoPort::Image im;
+    im.width = v.width;
+    im.height = v.height;
+    im.pixels.resize(static_cast<size_t>(v.width) * v.height);
+    for (int y = 0; y < v.height; ++y)
+        std::copy(v.row(y), v.row(y) + v.width,
+                  im.pixels.begin() + static_cast<ptrdiff_t>(y) * v.width);
+    return im;
+}
+
+FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
+                           const golden::ImageView& left, const golden::ImageView& right,
+                           const isa::MachineConfig& cfg) {
+    isa::Machine m(cfg);
+    m.load(prog);
+    for (const auto& [i, v] : param_block(plan)) m.set_param(i, v);
+    isa::ImageVideoPort video;
+    video.input[0] = to_video_image(left);
+    video.input[1] = to_video_image(right);
+    video.make_output(0, plan.roi.w, plan.roi.h);
+    m.set_video(&video);
+    const auto t0 = std::chrono::steady_clock::now();
+    m.run();
+    FrameResult r;
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.cycles = m.cycles();
+    r.modeled_ms = cfg.seconds(r.cycles) * 1e3;
+    r.phases = phase_table(m);
+    r.stats = m.stats();
+    r.map.width = plan.roi.w;
+    r.map.height = plan.roi.h;
+    r.map.data = video.output[0].pixels;
+    return r;
+}
+
+}  // namespace imap::firmware
