@@ -128,13 +128,20 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     int end = fp.f.mem_needed;
     const ForwardPlan& f = fp.f;
     const int spare = f.kbase - f.c0;
-    fp.split_in = 2 * fp.hbmax > spare;  // one image per re-layout pass
-    const int in_rows = fp.split_in ? fp.hbmax : 2 * fp.hbmax;
-    if (in_rows <= spare) {
+    const int64_t mem = cfg.mem_bytes;
+    if (2 * fp.hbmax <= spare) {
         fp.inl = f.c0;
-    } else {
+    } else if (end + 2 * fp.hbmax <= mem) {
         fp.inl = end;
-        end += in_rows;
+        end += 2 * fp.hbmax;
+    } else {
+        fp.split_in = true;  // one image per re-layout pass: one set of rows
+        if (fp.hbmax <= spare) {
+            fp.inl = f.c0;
+        } else {
+            fp.inl = end;
+            end += fp.hbmax;
+        }
     }
     fp.inr = fp.inl + fp.hbmax;
     if (fp.hbmax <= spare) {

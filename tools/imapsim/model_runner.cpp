@@ -198,6 +198,7 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
                        {"external_bytes_per_pe", run.plan.ext_needed},
                        {"batches", run.plan.batches.size()},
                        {"segments", run.plan.nseg},
+                       {"split_input_relayout", run.plan.split_in},
                        {"seed_col_resolved", run.plan.f.s}};
     j["params"] = prm;
     return j;
