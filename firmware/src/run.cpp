@@ -4,12 +4,16 @@
 
 namespace imap::firmware {
 
-std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m) {
+std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& prog,
+                                                          const std::vector<uint64_t>& cycles) {
     std::vector<std::pair<std::string, uint64_t>> t;
-    const auto& pc = m.phase_cycles();
-    for (size_t i = 0; i < pc.size(); ++i)
-        if (pc[i] > 0) t.emplace_back(m.program().phase_name(static_cast<uint32_t>(i)), pc[i]);
+    for (size_t i = 0; i < cycles.size(); ++i)
+        if (cycles[i] > 0) t.emplace_back(prog.phase_name(static_cast<uint32_t>(i)), cycles[i]);
     return t;
+}
+
+std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m) {
+    return phase_table(m.program(), m.phase_cycles());
 }
 
 isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {

@@ -272,12 +272,12 @@ struct Exec {
     template <bool Left>
     static void ring(Machine& m, const Decoded& d) {
         const size_t P = static_cast<size_t>(m.P_);
-        uint8_t* dst = m.lanes_.data() + d.d;
-        const uint8_t* a = m.lanes_.data() + d.a;
-        if (m.ring_)
-            m.ring_->shift(dst, a, m.m_, m.P_, d.imm, Left);
-        else
-            ring_shift<Left>(dst, a, m.m_, m.scratch_, P, static_cast<size_t>(d.imm));
+        if (m.ring_) {
+            m.ring_->shift(m.lanes_.data() + d.d, m.lanes_.data() + d.a, m.m_, m.P_, d.imm, Left);
+            return;
+        }
+        ring_rotate<Left>(m.scratch_, m.lanes_.data() + d.a, P, static_cast<size_t>(d.imm));
+        ring_write(m.lanes_.data() + d.d, m.scratch_, m.m_, P);
     }
 
     template <bool Any>

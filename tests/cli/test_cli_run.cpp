@@ -122,3 +122,34 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
     }
     fs::remove_all(d);
 }
+
+BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
+    const fs::path d = tmpdir();
+    const char* configs[] = {
+        "",
+        "--mode single --D 32 --vote off --frame left",
+        "--pes 64 --D 24 --seed-disp 3 --frame right",
+        "--pes 8 --size 40x30 --D 12 --set ring_hop=2 --set xfer_setup=20",
+    };
+    for (const char* c : configs) {
+        nlohmann::json rep[2];
+        const char* models[2] = {"core", "tlm"};
+        for (int m = 0; m < 2; ++m) {
+            const std::string file = (d / (std::string(models[m]) + ".json")).string();
+            const Result r =
+                run(std::string("run --model ") + models[m] + " --report " + file + " " + c);
+            BOOST_TEST_CONTEXT(c << " model " << models[m] << "\n" << r.out) {
+                BOOST_REQUIRE(r.code == 0);
+            }
+            std::ifstream in(file);
+            rep[m] = nlohmann::json::parse(in);
+        }
+        BOOST_TEST_CONTEXT(c) {
+            BOOST_TEST(rep[0].at("bit_exact").get<bool>());
+            BOOST_TEST(rep[1].at("bit_exact").get<bool>());
+            BOOST_TEST(rep[0].at("cycles") == rep[1].at("cycles"));
+            BOOST_TEST(rep[0].at("phases") == rep[1].at("phases"));
+        }
+    }
+    fs::remove_all(d);
+}

@@ -49,10 +49,11 @@ int main(int argc, char** argv) {
     const double bare_ns = bare_best * 1e9 / static_cast<double>(instr);
     const double tlm_ns = r.wall_s * 1e9 / static_cast<double>(instr);
     std::printf("'%s' x 100 per loop\n", insn.c_str());
-    std::printf("P=256, %llu instructions, %llu cycles, quantum %.0f ns (%llu syncs, %llu chunks)\n",
-                static_cast<unsigned long long>(instr), static_cast<unsigned long long>(cycles),
-                r.quantum_ns, static_cast<unsigned long long>(r.syncs),
-                static_cast<unsigned long long>(r.chunks));
+    std::printf(
+        "P=256, %llu instructions, %llu cycles, quantum %.0f ns (%llu syncs, %llu chunks)\n",
+        static_cast<unsigned long long>(instr), static_cast<unsigned long long>(cycles),
+        r.quantum_ns, static_cast<unsigned long long>(r.syncs),
+        static_cast<unsigned long long>(r.chunks));
     std::printf("bare machine: %.2f ns/instruction (best of 3)\n", bare_ns);
     std::printf("run_tlm:      %.2f ns/instruction\n", tlm_ns);
     std::printf("overhead:     %.1f %%\n", (tlm_ns / bare_ns - 1.0) * 100.0);

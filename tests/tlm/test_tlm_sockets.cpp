@@ -2,8 +2,8 @@
 // (b_transport, transport_dbg, DMI refused) and the array memory target
 // (DMI granted on the address-major block).
 #define BOOST_TEST_MODULE tlm_sockets
-#include <boost/test/unit_test.hpp>
 #include <tlm_utils/simple_initiator_socket.h>
+#include <boost/test/unit_test.hpp>
 
 #include "tlm_test_util.hpp"
 
@@ -65,11 +65,13 @@ BOOST_AUTO_TEST_CASE(hierarchy_and_sockets_p8) {
     host.mem.bind(top.array.mem.socket);
 
     // (b) names
-    for (const char* n : {"top", "top.cp", "top.cp.video", "top.cp.mem", "top.array",
-                          "top.array.mem", "top.array.mem.socket", "top.ring", "top.maskbus",
-                          "top.video", "top.video.socket", "top.array.pe_0", "top.array.pe_5",
-                          "top.array.pe_7", "top.array.pe_5.socket"}) {
-        BOOST_TEST_CONTEXT(n) { BOOST_CHECK(sc_core::sc_find_object(n) != nullptr); }
+    for (const char* n :
+         {"top", "top.cp", "top.cp.video", "top.cp.mem", "top.array", "top.array.mem",
+          "top.array.mem.socket", "top.ring", "top.maskbus", "top.video", "top.video.socket",
+          "top.array.pe_0", "top.array.pe_5", "top.array.pe_7", "top.array.pe_5.socket"}) {
+        BOOST_TEST_CONTEXT(n) {
+            BOOST_CHECK(sc_core::sc_find_object(n) != nullptr);
+        }
     }
     BOOST_CHECK(sc_core::sc_find_object("top.array.pe_8") == nullptr);
     for (int p = 0; p < 8; ++p) {

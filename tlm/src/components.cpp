@@ -165,9 +165,8 @@ bool ArrayMem::get_direct_mem_ptr(int, ::tlm::tlm_generic_payload& tr, ::tlm::tl
 
 Array::Array(sc_core::sc_module_name name, isa::Machine& m, sc_core::sc_time period)
     : sc_module(name), pe("pe"), mem("mem", m, period) {
-    pe.init(static_cast<size_t>(m.pes()), [&](const char* n, size_t i) {
-        return new Pe(n, static_cast<int>(i), m, period);
-    });
+    pe.init(static_cast<size_t>(m.pes()),
+            [&](const char* n, size_t i) { return new Pe(n, static_cast<int>(i), m, period); });
 }
 
 // ---------------------------------------------------------------------------
@@ -176,18 +175,28 @@ Array::Array(sc_core::sc_module_name name, isa::Machine& m, sc_core::sc_time per
 Ring::Ring(sc_core::sc_module_name name, int pes)
     : sc_module(name), scratch_(static_cast<size_t>(pes)) {}
 
+namespace {
+[[noreturn, gnu::cold, gnu::noinline]] void ring_size_mismatch(const char* name, size_t built,
+                                                               int driven) {
+    throw std::logic_error(std::string(name) + ": built for " + std::to_string(built) +
+                           " PEs, driven with " + std::to_string(driven));
+}
+}  // namespace
+
 void Ring::shift(uint8_t* dst, const uint8_t* src, const uint8_t* mask, int P, int hops,
                  bool towards_higher) {
-    if (static_cast<size_t>(P) != scratch_.size())
-        throw std::logic_error(std::string(name()) + ": built for " +
-                               std::to_string(scratch_.size()) + " PEs, driven with " +
-                               std::to_string(P));
+    const size_t n = scratch_.size();
+    if (static_cast<size_t>(P) != n) ring_size_mismatch(name(), n, P);
+    uint8_t* links = scratch_.data();
+    if (towards_higher) {
+        isa::ring_shift<true>(dst, src, mask, links, n, static_cast<size_t>(hops));
+        ++stats_.left;
+    } else {
+        isa::ring_shift<false>(dst, src, mask, links, n, static_cast<size_t>(hops));
+        ++stats_.right;
+    }
     ++stats_.transfers;
-    ++(towards_higher ? stats_.left : stats_.right);
     stats_.hops += static_cast<uint64_t>(hops);
-    stats_.lane_bytes += static_cast<uint64_t>(hops) * static_cast<uint64_t>(P);
-    isa::ring_shift(dst, src, mask, scratch_.data(), static_cast<size_t>(P),
-                    static_cast<size_t>(hops), towards_higher);
 }
 
 MaskBus::MaskBus(sc_core::sc_module_name name) : sc_module(name) {}

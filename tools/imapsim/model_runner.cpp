@@ -85,7 +85,19 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     try {
 #ifdef IMAPSIM_HAVE_TLM
         if (model == "tlm") {
-            run.result = imap::tlm::run_frame_tlm(run.plan, prog, left, right, cfg);
+            imap::tlm::OutputImages out;
+            const imap::tlm::TlmRunResult tr =
+                imap::tlm::run_tlm(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
+                                   fw::to_video_image(right), roi.w, roi.h, &out);
+            fw::FrameResult& r = run.result;
+            r.cycles = tr.cycles;
+            r.modeled_ms = tr.modeled_ms;
+            r.wall_s = tr.wall_s;
+            r.phases = fw::phase_table(prog, tr.phase_cycles);
+            r.stats = tr.stats;
+            r.map.width = roi.w;
+            r.map.height = roi.h;
+            r.map.data = out.image[0].pixels;
             return run;
         }
 #endif

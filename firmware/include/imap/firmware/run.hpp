@@ -24,6 +24,8 @@ struct FrameResult {
 // Phase table of a finished machine (names from the program, zero phases
 // left out).
 std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m);
+std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& prog,
+                                                          const std::vector<uint64_t>& cycles);
 
 // Runs one frame on the bare machine core (the executor every model wraps).
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,

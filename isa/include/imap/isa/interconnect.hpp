@@ -21,6 +21,29 @@ namespace imap::isa {
 #define IMAP_ISA_IVDEP
 #endif
 
+// The shift ring, in two halves (the executor calls them separately so that
+// no lane pointer lives across the copies; ring_shift below is both).
+// ring_rotate: s = src rotated by hops mod P, towards higher PE indices
+// (rxl) or lower ones (rxr). ring_write: dst = M ? s : dst.
+template <bool TowardsHigher>
+inline void ring_rotate(uint8_t* s, const uint8_t* src, size_t P, size_t hops) {
+    const size_t k = hops % P;
+    if constexpr (TowardsHigher) {
+        std::memcpy(s + k, src, P - k);
+        std::memcpy(s, src + P - k, k);
+    } else {
+        std::memcpy(s, src + k, P - k);
+        std::memcpy(s + P - k, src, k);
+    }
+}
+inline void ring_write(uint8_t* dst, const uint8_t* s, const uint8_t* mask, size_t P) {
+    IMAP_ISA_IVDEP
+    for (size_t p = 0; p < P; ++p) {
+        // M ? s : dst, branch-free: ((s ^ dst) & -M) ^ dst
+        const uint8_t km = static_cast<uint8_t>(-mask[p]);
+        dst[p] = static_cast<uint8_t>(((s[p] ^ dst[p]) & km) ^ dst[p]);
+    }
+}
 // dst = M ? shifted src : dst over P lanes, where the shifted row is
 //   TowardsHigher (rxl): s[p] = src[(p - hops) mod P]  (data moves up)
 //   otherwise     (rxr): s[p] = src[(p + hops) mod P]  (data moves down)
@@ -29,21 +52,8 @@ namespace imap::isa {
 template <bool TowardsHigher>
 inline void ring_shift(uint8_t* dst, const uint8_t* src, const uint8_t* mask, uint8_t* scratch,
                        size_t P, size_t hops) {
-    const size_t k = hops % P;
-    uint8_t* s = scratch;
-    if constexpr (TowardsHigher) {
-        std::memcpy(s + k, src, P - k);
-        std::memcpy(s, src + P - k, k);
-    } else {
-        std::memcpy(s, src + k, P - k);
-        std::memcpy(s + P - k, src, k);
-    }
-    IMAP_ISA_IVDEP
-    for (size_t p = 0; p < P; ++p) {
-        // M ? s : dst, branch-free: ((s ^ dst) & -M) ^ dst
-        const uint8_t km = static_cast<uint8_t>(-mask[p]);
-        dst[p] = static_cast<uint8_t>(((s[p] ^ dst[p]) & km) ^ dst[p]);
-    }
+    ring_rotate<TowardsHigher>(scratch, src, P, hops);
+    ring_write(dst, scratch, mask, P);
 }
 inline void ring_shift(uint8_t* dst, const uint8_t* src, const uint8_t* mask, uint8_t* scratch,
                        size_t P, size_t hops, bool towards_higher) {

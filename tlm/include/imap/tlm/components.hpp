@@ -5,13 +5,13 @@
 // (cp.hpp) is the only active component.
 #pragma once
 
+#include <tlm_utils/multi_passthrough_target_socket.h>
+#include <tlm_utils/simple_target_socket.h>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/multi_passthrough_target_socket.h>
-#include <tlm_utils/simple_target_socket.h>
 #include <vector>
 
 #include "imap/isa/machine.hpp"
@@ -113,7 +113,11 @@ class Ring : public sc_core::sc_module, public isa::RingPort {
     const char* kind() const override { return "imap::tlm::Ring"; }
     void shift(uint8_t* dst, const uint8_t* src, const uint8_t* mask, int P, int hops,
                bool towards_higher) override;
-    const RingStats& stats() const { return stats_; }
+    RingStats stats() const {
+        RingStats s = stats_;
+        s.lane_bytes = s.hops * scratch_.size();
+        return s;
+    }
 
   private:
     std::vector<uint8_t> scratch_;  // the values on the ring links

@@ -8,13 +8,13 @@
 // video line transfer (the I/O boundary). No process per PE, none per cycle.
 #pragma once
 
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/tlm_quantumkeeper.h>
 #include <cstdint>
 #include <exception>
 #include <memory>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_initiator_socket.h>
-#include <tlm_utils/tlm_quantumkeeper.h>
 #include <vector>
 
 #include "imap/isa/machine.hpp"
@@ -47,8 +47,8 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     // The exception that ended the run (an isa::Fault, ...), or null.
     std::exception_ptr fault() const { return fault_; }
     bool finished() const { return finished_; }
-    uint64_t syncs() const { return syncs_; }           // quantum keeper synchronisations
-    uint64_t chunks() const { return chunks_; }         // Machine::run calls
+    uint64_t syncs() const { return syncs_; }    // quantum keeper synchronisations
+    uint64_t chunks() const { return chunks_; }  // Machine::run calls
     bool used_dmi() const { return dmi_ptr_ != nullptr; }
 
   private:

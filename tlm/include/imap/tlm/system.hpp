@@ -63,8 +63,8 @@ class TlmSystem : private detail::ElaborationGuard, public sc_core::sc_module {
     // Builds the hierarchy for cfg.pes PEs and loads the program. Throws
     // isa::ConfigError / isa::LoadError, and std::logic_error when SystemC
     // is past elaboration in this process.
-    TlmSystem(sc_core::sc_module_name name, const isa::MachineConfig& cfg,
-              const isa::Program& prog, const TlmConfig& tcfg = {});
+    TlmSystem(sc_core::sc_module_name name, const isa::MachineConfig& cfg, const isa::Program& prog,
+              const TlmConfig& tcfg = {});
     const char* kind() const override { return "imap::tlm::TlmSystem"; }
 
     // Host inputs, before sc_start.
