@@ -70,5 +70,6 @@ Subcommand register_synth(CLI::App& app);
 Subcommand register_run(CLI::App& app);
 Subcommand register_asm(CLI::App& app);
 Subcommand register_disasm(CLI::App& app);
+Subcommand register_regress(CLI::App& app);
 
 }  // namespace imapsim

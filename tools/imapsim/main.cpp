@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
     subs.push_back(register_asm(app));
     subs.push_back(register_disasm(app));
 #endif
+#ifdef IMAPSIM_HAVE_REGRESS
+    subs.push_back(register_regress(app));
+#endif
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
