@@ -71,5 +71,6 @@ Subcommand register_run(CLI::App& app);
 Subcommand register_asm(CLI::App& app);
 Subcommand register_disasm(CLI::App& app);
 Subcommand register_regress(CLI::App& app);
+Subcommand register_bench(CLI::App& app);
 
 }  // namespace imapsim

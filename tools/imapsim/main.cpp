@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(0, 1);
     app.set_version_flag("--version", "imapsim 0.1.0");
     std::vector<Subcommand> subs = {register_run(app), register_golden(app), register_eval(app),
-                                    register_synth(app)};
+                                    register_synth(app), register_bench(app)};
 #ifdef IMAPSIM_HAVE_ISA
     subs.push_back(register_asm(app));
     subs.push_back(register_disasm(app));

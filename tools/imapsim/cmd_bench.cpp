@@ -1,0 +1,168 @@
+// imapsim bench: simulation speed and firmware quality on the headline case
+// (ROI 128x128, D = 64, bidir, vote on, 256 PEs at 40 MHz), each model run
+// in its own process, medians over --runs.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "child.hpp"
+#include "cli_common.hpp"
+#include "imap/golden/stereo.hpp"
+#include "imap/vision/image_io.hpp"
+#include "imap/vision/synth.hpp"
+#include "model_runner.hpp"
+
+namespace imapsim {
+
+namespace g = imap::golden;
+namespace v = imap::vision;
+
+namespace {
+
+struct BenchOptions {
+    std::string json;
+    int runs = 3;
+};
+
+double median(std::vector<double> x) {
+    std::sort(x.begin(), x.end());
+    const size_t n = x.size();
+    return n == 0 ? 0.0 : (n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]));
+}
+
+struct ModelTimes {
+    bool available = false;
+    uint64_t cycles = 0;
+    double modeled_ms = 0;
+    std::vector<double> wall_s;
+    nlohmann::json phases;
+};
+
+// Runs `imapsim run --model M --report F` (the headline case is run's
+// default) `runs` times in child processes.
+ModelTimes time_model(const std::string& model, int runs) {
+    ModelTimes t;
+    const std::string rep = (std::filesystem::temp_directory_path() /
+                             ("imapsim-bench-" + std::to_string(::getpid()) + ".json"))
+                                .string();
+    for (int i = 0; i < runs; ++i) {
+        std::printf("  %s run %d/%d ...\n", model.c_str(), i + 1, runs);
+        std::fflush(stdout);
+        const ChildResult c = run_self({"run", "--model", model, "--report", rep});
+        if (c.exit_code != 0)
+            throw UserError("bench: imapsim run --model " + model + " failed (exit " +
+                                std::to_string(c.exit_code) + "):\n" + c.output,
+                            kExitInternal);
+        std::ifstream in(rep);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        if (!j.at("bit_exact").get<bool>())
+            throw UserError("bench: model " + model + " is not bit-exact", kExitMismatch);
+        t.cycles = j.at("cycles").get<uint64_t>();
+        t.modeled_ms = j.at("modeled_ms").get<double>();
+        t.wall_s.push_back(j.at("wall_s").get<double>());
+        t.phases = j.at("phases");
+    }
+    std::filesystem::remove(rep);
+    t.available = true;
+    return t;
+}
+
+}  // namespace
+
+Subcommand register_bench(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* sub = app.add_subcommand(
+        "bench",
+        "Simulation speed and firmware cycles on the headline case (each model in its "
+        "own process; medians)");
+    sub->add_option("--json", o->json, "write the figures as JSON");
+    sub->add_option("--runs", o->runs, "runs per model (median)")
+        ->check(CLI::Range(1, 50))
+        ->capture_default_str();
+    return {
+        sub, [o]() {
+            std::printf(
+                "imapsim bench: headline case (synthetic scene, ROI 128x128, D=64, "
+                "bidir, vote on, 256 PEs, 40 MHz), %d run(s) per model\n",
+                o->runs);
+            const ModelTimes tlm = time_model("tlm", o->runs);
+            ModelTimes rtl;
+            if (model_names().find("rtl") != std::string::npos) rtl = time_model("rtl", o->runs);
+
+            // golden, in process, on the same inputs as run's default
+            const v::SynthScene sc = v::make_synth_scene(1, 160, 128);
+            g::Params p;
+            const g::Roi roi{16, 0, 128, 128};
+            std::vector<double> gms;
+            for (int i = 0; i < 5 * o->runs; ++i) {
+                const auto t0 = std::chrono::steady_clock::now();
+                const g::DisparityMap m =
+                    g::compute(p, v::view_of(sc.left), v::view_of(sc.right), roi);
+                gms.push_back(
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count());
+                if (m.data.empty()) return static_cast<int>(kExitInternal);
+            }
+            const double golden_ms = median(gms);
+
+            int64_t nodes = 0;  // valid DP states of the frame
+            for (int i = 0; i < roi.w; ++i) nodes += g::levels_at(i, roi.w, p.D);
+            nodes *= roi.h;
+            const double per_pe = static_cast<double>(nodes) / 256.0;
+            const double tlm_wall = median(tlm.wall_s);
+            const double realtime = tlm.modeled_ms / 1e3 / tlm_wall;
+            const double tlm_cps = static_cast<double>(tlm.cycles) / tlm_wall;
+            const double rtl_wall = rtl.available ? median(rtl.wall_s) : 0.0;
+            const double rtl_cps = rtl.available ? static_cast<double>(rtl.cycles) / rtl_wall : 0.0;
+
+            std::printf("\n  modeled time            %10.3f ms   (paper: 85 ms)\n", tlm.modeled_ms);
+            std::printf("  cycles                  %10llu\n",
+                        static_cast<unsigned long long>(tlm.cycles));
+            std::printf("  cycles per DP node/PE   %10.1f      (%lld DP nodes, %.0f per PE)\n",
+                        static_cast<double>(tlm.cycles) / per_pe, static_cast<long long>(nodes),
+                        per_pe);
+            std::printf("  TLM wall                %10.4f s    (median)\n", tlm_wall);
+            std::printf("  TLM modeled/wall        %10.2f      (>= 1: faster than the board)\n",
+                        realtime);
+            std::printf("  TLM cycles/s            %10.3g\n", tlm_cps);
+            if (rtl.available) {
+                std::printf(
+                    "  RTL cycles/s            %10.3g      (full headline run, %llu "
+                    "cycles)\n",
+                    rtl_cps, static_cast<unsigned long long>(rtl.cycles));
+                std::printf("  TLM/RTL speed           %10.1f\n", tlm_cps / rtl_cps);
+            } else {
+                std::printf("  RTL                     not built in this binary\n");
+            }
+            std::printf("  golden wall             %10.3f ms   (median)\n", golden_ms);
+            std::printf("  TLM wall / golden wall  %10.2f\n", tlm_wall * 1e3 / golden_ms);
+
+            if (!o->json.empty()) {
+                nlohmann::json j;
+                j["modeled_ms"] = tlm.modeled_ms;
+                j["cycles"] = tlm.cycles;
+                j["cycles_per_dp_node"] = static_cast<double>(tlm.cycles) / per_pe;
+                j["dp_nodes"] = nodes;
+                j["tlm_wall_s"] = tlm_wall;
+                j["realtime_factor"] = realtime;
+                j["tlm_cycles_per_s"] = tlm_cps;
+                j["rtl_cycles_per_s"] = rtl.available ? nlohmann::json(rtl_cps) : nlohmann::json();
+                j["tlm_over_rtl"] =
+                    rtl.available ? nlohmann::json(tlm_cps / rtl_cps) : nlohmann::json();
+                j["golden_ms"] = golden_ms;
+                j["tlm_over_golden"] = tlm_wall * 1e3 / golden_ms;
+                j["phases"] = tlm.phases;
+                j["runs"] = o->runs;
+                v::write_text_atomic(o->json, j.dump(2) + "\n");
+                std::printf("  -> %s\n", o->json.c_str());
+            }
+            return static_cast<int>(kExitOk);
+        }};
+}
+
+}  // namespace imapsim
