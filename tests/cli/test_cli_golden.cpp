@@ -1,14 +1,14 @@
 // imapsim golden / eval / synth / run from the outside: exit codes, one-line
 // errors naming the problem, no output file on error, outputs on success.
 #define BOOST_TEST_MODULE cli_golden
-#include <sys/wait.h>
-
 #include <boost/test/unit_test.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
+
+#include "cli_test_util.hpp"
 
 #include "imap/golden/stereo.hpp"
 #include "imap/vision/image_io.hpp"
@@ -18,23 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-    const std::string cmd = std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    BOOST_REQUIRE(p != nullptr);
-    char buf[4096];
-    size_t n = 0;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    const int st = pclose(p);
-    r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using clitest::Result;
+using clitest::run;
 
 // A fresh folder with a synthetic pair (left.png, right.png).
 struct Fixture {

@@ -2,8 +2,6 @@
 // shared Middlebury scenes (ROIs and whole images), the JSON report, and the
 // machine-flag errors.
 #define BOOST_TEST_MODULE cli_run
-#include <sys/wait.h>
-
 #include <boost/test/unit_test.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -11,27 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_test_util.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;
-};
-
-Result run(const std::string& args) {
-    const std::string cmd = std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    BOOST_REQUIRE(p != nullptr);
-    char buf[4096];
-    size_t n = 0;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    const int st = pclose(p);
-    r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using clitest::Result;
+using clitest::run;
 
 std::string scene(const std::string& name) {
     const std::string d = std::string(IMAP_SHARED_DATA) + "/middlebury/" + name;

@@ -1,0 +1,31 @@
+// Running the imapsim binary from a test: exit code and output.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cstdio>
+#include <string>
+
+namespace clitest {
+
+struct Result {
+    int code = -1;    // exit code, -1 when killed by a signal
+    std::string out;  // stdout and stderr together
+};
+
+// Runs `IMAPSIM_EXE args` through the shell and waits for it.
+inline Result run(const std::string& args) {
+    const std::string cmd = std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
+    Result r;
+    FILE* p = popen(cmd.c_str(), "r");
+    BOOST_REQUIRE(p != nullptr);
+    char buf[4096];
+    size_t n = 0;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    const int st = pclose(p);
+    r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+}  // namespace clitest
