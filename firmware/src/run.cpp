@@ -29,7 +29,7 @@ isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {
 
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
                            const golden::ImageView& left, const golden::ImageView& right,
-                           const isa::MachineConfig& cfg) {
+                           const isa::MachineConfig& cfg, isa::Observer* observer) {
     isa::Machine m(cfg);
     m.load(prog);
     for (const auto& [i, v] : param_block(plan)) m.set_param(i, v);
@@ -38,6 +38,7 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     video.input[1] = to_video_image(right);
     video.make_output(0, plan.roi.w, plan.roi.h);
     m.set_video(&video);
+    m.set_observer(observer);
     const auto t0 = std::chrono::steady_clock::now();
     m.run();
     FrameResult r;

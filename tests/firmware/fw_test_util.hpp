@@ -50,6 +50,20 @@ inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, cons
     }
 }
 
+// Host-fills every PE's line buffers: line y on PEs 2y (left wavefront) and
+// 2y+1 (right) in bidir mode, on PE y in single mode.
+inline void load_lines(isa::Machine& m, const fw::ForwardPlan& f, const std::vector<Line>& lines) {
+    for (size_t y = 0; y < lines.size(); ++y) {
+        const int yi = static_cast<int>(y);
+        if (f.bidir) {
+            fill_buffers(m, 2 * yi, f, lines[y], true);
+            fill_buffers(m, 2 * yi + 1, f, lines[y], false);
+        } else {
+            fill_buffers(m, yi, f, lines[y], false);
+        }
+    }
+}
+
 // Random lines: the left line is the right line shifted by a random
 // disparity plus noise, so the DP has real structure.
 inline std::vector<Line> random_lines(std::mt19937& rng, int N, int H, int D) {

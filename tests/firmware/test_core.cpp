@@ -20,14 +20,7 @@ void check_core(const g::Params& p, int N, int H, std::mt19937& rng) {
     isa::Machine m(cfg);
     m.load(prog);
     const std::vector<Line> lines = random_lines(rng, N, H, p.D);
-    for (int y = 0; y < H; ++y) {
-        if (bidir) {
-            fill_buffers(m, 2 * y, f, lines[size_t(y)], true);
-            fill_buffers(m, 2 * y + 1, f, lines[size_t(y)], false);
-        } else {
-            fill_buffers(m, y, f, lines[size_t(y)], false);
-        }
-    }
+    load_lines(m, f, lines);
     m.run();
     BOOST_REQUIRE(m.halted());
 

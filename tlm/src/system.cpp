@@ -77,6 +77,7 @@ TlmRunResult run_tlm(const isa::MachineConfig& cfg, const isa::Program& prog,
     sys->set_input(1, right);
     sys->make_output(0, out_w, out_h);
     sys->make_output(1, out_w, out_h);
+    if (tcfg.observer) sys->machine().set_observer(tcfg.observer);
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
     const auto t1 = std::chrono::steady_clock::now();

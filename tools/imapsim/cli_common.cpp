@@ -27,6 +27,20 @@ long long parse_int_flag(const std::string& flag, const std::string& text, long 
     return v;
 }
 
+nlohmann::json algo_params_json(const g::Params& p) {
+    return {{"D", p.D},
+            {"km", p.km},
+            {"kb", p.kb},
+            {"gb", p.gb},
+            {"Wo", p.Wo},
+            {"Wd", p.Wd},
+            {"mode", g::to_string(p.mode)},
+            {"seed_col", g::seed_col_string(p.seed_col)},
+            {"seed_disp", g::seed_disp_string(p.seed_disp)},
+            {"vote", p.vote},
+            {"frame", g::to_string(p.frame)}};
+}
+
 void add_algo_flags(CLI::App* app, AlgoFlags& f) {
     const g::Params d;
     auto opt = [&](const char* name, std::string& dst, const std::string& help,

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -51,6 +52,9 @@ void add_algo_flags(CLI::App* app, AlgoFlags& f);
 // Converts the flags to golden parameters (throws UserError naming the flag).
 // The ROI is returned separately: `has_roi` false means "whole image".
 imap::golden::Params parse_algo_flags(const AlgoFlags& f, imap::golden::Roi* roi, bool* has_roi);
+
+// The algorithm parameters as a JSON object (reports).
+nlohmann::json algo_params_json(const imap::golden::Params& p);
 
 // Strict integer parse of a flag value; error names the flag and the range.
 long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,

@@ -36,19 +36,12 @@ struct Row {
 };
 
 json matcher_params(const std::string& name, const g::Params& p) {
-    if (name == "golden")
-        return {{"D", p.D},
-                {"km", p.km},
-                {"kb", p.kb},
-                {"gb", p.gb},
-                {"Wo", p.Wo},
-                {"Wd", p.Wd},
-                {"mode", g::to_string(p.mode)},
-                {"seed_col", g::seed_col_string(p.seed_col)},
-                {"seed_disp", g::seed_disp_string(p.seed_disp)},
-                {"vote", p.vote},
-                {"frame", "left"},
-                {"fill", true}};
+    if (name == "golden") {
+        json j = algo_params_json(p);
+        j["frame"] = "left";
+        j["fill"] = true;
+        return j;
+    }
     const v::OpenCvSettings s = v::opencv_settings(name, p.D);
     json j = {{"D", p.D},
               {"numDisparities", s.num_disparities},

@@ -29,6 +29,8 @@ struct RunOptions {
     std::string size = "160x128";
     AlgoFlags algo;
     MachineFlags machine;
+    RtlFlags rtl;
+    WaveFlags waves;
 };
 
 // Share of ROI pixels whose disparity differs from the ground truth by more
@@ -60,6 +62,8 @@ Subcommand register_run(CLI::App& app) {
     sub->add_option("--size", o->size, "synthetic scene size WxH")->capture_default_str();
     add_algo_flags(sub, o->algo);
     add_machine_flags(sub, o->machine);
+    add_rtl_flags(sub, o->rtl);
+    add_wave_flags(sub, o->waves);
 
     return {sub, [o]() {
                 g::Roi roi;
@@ -120,7 +124,8 @@ Subcommand register_run(CLI::App& app) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
                         .count();
 
-                ModelRun run = run_model(o->model, p, roi, lv, rv, cfg);
+                set_rtl_flags(o->rtl);
+                ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves);
                 const fw::FrameResult& r = run.result;
                 const Comparison cmp = compare_maps(r.map, want);
                 print_run_summary(run, cmp, cfg, golden_ms);

@@ -6,6 +6,15 @@
 #ifdef IMAPSIM_HAVE_TLM
 #include "imap/tlm/system.hpp"
 #endif
+#ifdef IMAPSIM_HAVE_RTL
+#include "imap/rtl/lockstep.hpp"
+#include "imap/rtl/system.hpp"
+#endif
+#ifdef IMAPSIM_HAVE_WAVES
+#include <memory>
+
+#include "imap/waves/isa_trace.hpp"
+#endif
 
 namespace imapsim {
 
@@ -55,11 +64,38 @@ isa::MachineConfig parse_machine_flags(const MachineFlags& f) {
 }
 
 std::string model_names() {
+    std::string s;
 #ifdef IMAPSIM_HAVE_TLM
-    return "tlm (SystemC TLM-2.0), core (the bare instruction-set executor)";
-#else
-    return "core (the bare instruction-set executor)";
+    s += "tlm (SystemC TLM-2.0), ";
 #endif
+#ifdef IMAPSIM_HAVE_RTL
+    s += "rtl (SystemC cycle-accurate, signal level), lockstep (tlm and rtl side by side, state "
+         "compared per instruction), ";
+#endif
+    return s + "core (the bare instruction-set executor)";
+}
+
+namespace {
+RtlFlags g_rtl_flags;
+}
+
+void add_rtl_flags(CLI::App* app, RtlFlags& f) {
+    const char* grp = "RTL / lockstep (docs/rtl.md)";
+    app->add_option("--lockstep-interval", f.lockstep_interval,
+                    "--model lockstep: compare the state every N instructions [default: 1]")
+        ->group(grp);
+    app->add_option("--inject-fault", f.inject_fault,
+                    "--model rtl / lockstep: XOR MASK into register REG (rN, c, t, m) of PE "
+                    "after instruction INSTR, RTL side only: INSTR:PE:REG:MASK")
+        ->group(grp);
+    app->add_option("--rtl-trace-pes", f.trace_pes,
+                    "--model rtl / lockstep: PEs with per-PE signals, a:b (inclusive) or "
+                    "'none' [default: all]")
+        ->group(grp);
+}
+
+void set_rtl_flags(const RtlFlags& f) {
+    g_rtl_flags = f;
 }
 
 void check_model_name(const std::string& m) {
@@ -67,12 +103,35 @@ void check_model_name(const std::string& m) {
 #ifdef IMAPSIM_HAVE_TLM
     if (m == "tlm") return;
 #endif
+#ifdef IMAPSIM_HAVE_RTL
+    if (m == "rtl" || m == "lockstep") return;
+#endif
     throw UserError("invalid value '" + m + "' for --model: expected " + model_names());
+}
+
+void add_wave_flags(CLI::App* app, WaveFlags& f) {
+    const char* grp = "Waves (docs/waves.md)";
+    app->add_option("--vcd", f.vcd,
+                    "write a VCD of the run here (off by default) and a GTKWave view next to it "
+                    "(same name, .gtkw)")
+        ->group(grp);
+    app->add_option("--trace-pes", f.pes,
+                    "PEs to trace: a:b (inclusive) or a list 1,5,9 [default: 0:3]")
+        ->group(grp);
+    app->add_option("--trace-window", f.window,
+                    "cycles to trace t0:t1, or times with ns/us/ms (e.g. 2.5us:3us) [default: all]")
+        ->group(grp);
+    app->add_option("--trace-signals", f.signals,
+                    "signal groups: cp,ring,mask,mem,regs [default: all]")
+        ->group(grp);
+    app->add_option("--trace-limit-mb", f.limit_mb,
+                    "stop tracing (the VCD stays valid) beyond this size in MB [default: 200]")
+        ->group(grp);
 }
 
 ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& roi,
                    const g::ImageView& left, const g::ImageView& right,
-                   const isa::MachineConfig& cfg) {
+                   const isa::MachineConfig& cfg, const WaveFlags* waves) {
     ModelRun run;
     run.model = model;
     try {
@@ -82,13 +141,116 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     }
     const isa::Program prog = fw::assemble_frame(p, run.plan);
     run.program_words = prog.code.size();
+    isa::Observer* observer = nullptr;
+#ifdef IMAPSIM_HAVE_WAVES
+    // Waves: an observer on the machine; nothing is attached without --vcd.
+    std::unique_ptr<imap::waves::IsaTracer> tracer;
+    auto finish_waves = [&](uint64_t end_cycle) {
+        if (!tracer) return;
+        try {
+            tracer->finish(end_cycle);
+        } catch (const imap::waves::WaveError& e) {
+            throw UserError(std::string("--vcd: ") + e.what());
+        }
+        std::printf("  waves -> %s (%.2f MB, %llu instructions traced%s) + %s\n",
+                    tracer->vcd_path().c_str(), static_cast<double>(tracer->bytes()) / 1048576.0,
+                    static_cast<unsigned long long>(tracer->traced_instructions()),
+                    tracer->limit_reached() ? ", stopped at --trace-limit-mb" : "",
+                    tracer->gtkw_path().c_str());
+    };
+    if (waves && !waves->vcd.empty()) {
+        try {
+            const imap::waves::TraceSelection sel = imap::waves::parse_trace_selection(
+                waves->pes, waves->window, waves->signals, waves->limit_mb, cfg);
+            if (sel.t1 != UINT64_MAX) {
+                const double est = imap::waves::IsaTracer::estimate_bytes(sel, sel.t1 - sel.t0);
+                if (est > static_cast<double>(sel.limit_bytes))
+                    std::fprintf(stderr,
+                                 "warning: --vcd: the selection (%zu PEs x %llu cycles) is "
+                                 "estimated at %.0f MB, above %s: the trace will stop there\n",
+                                 sel.pes.size(), static_cast<unsigned long long>(sel.t1 - sel.t0),
+                                 est / 1048576.0, sel.limit_name.c_str());
+            }
+            tracer = std::make_unique<imap::waves::IsaTracer>(waves->vcd, cfg, prog, sel);
+        } catch (const imap::waves::WaveError& e) {
+            throw UserError(e.what());
+        }
+        observer = tracer.get();
+    }
+#else
+    if (waves && !waves->vcd.empty()) throw UserError("--vcd: this imapsim has no waves library");
+    auto finish_waves = [](uint64_t) {};
+#endif
     try {
+#ifdef IMAPSIM_HAVE_RTL
+        if (model == "rtl" || model == "lockstep") {
+            namespace rtl = imap::rtl;
+            rtl::LockstepConfig lc;
+            const RtlFlags& rf = g_rtl_flags;
+            try {
+                if (!rf.inject_fault.empty())
+                    lc.rtl.inject = rtl::parse_fault_injection(rf.inject_fault);
+                if (rf.trace_pes == "none") {
+                    lc.rtl.trace_pe_count = 0;
+                } else if (!rf.trace_pes.empty()) {
+                    int a = 0, b = 0;
+                    char colon = 0;
+                    if (std::sscanf(rf.trace_pes.c_str(), "%d%c%d", &a, &colon, &b) != 3 ||
+                        colon != ':' || b < a)
+                        throw isa::ConfigError("invalid value '" + rf.trace_pes +
+                                               "' for --rtl-trace-pes: expected a:b or none");
+                    lc.rtl.trace_pe_first = a;
+                    lc.rtl.trace_pe_count = b - a + 1;
+                }
+                lc.interval = rf.lockstep_interval;
+                lc.validate(cfg);
+            } catch (const isa::ConfigError& e) {
+                throw UserError(e.what());
+            }
+            imap::tlm::OutputImages out;
+            fw::FrameResult& r = run.result;
+            if (model == "rtl") {
+                const rtl::RtlRunResult rr =
+                    rtl::run_rtl(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
+                                 fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
+                r.cycles = rr.cycles;
+                r.modeled_ms = rr.modeled_ms;
+                r.wall_s = rr.wall_s;
+                r.phases = fw::phase_table(prog, rr.phase_cycles);
+                r.stats = rr.stats;
+            } else {
+                const rtl::LockstepResult lr = rtl::run_lockstep(
+                    cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
+                    fw::to_video_image(right), roi.w, roi.h, &out, lc);
+                if (lr.diverged) throw UserError(lr.divergence.message(), kExitMismatch);
+                std::printf(
+                    "  lockstep: TLM and RTL agree: %llu state records compared (every %llu "
+                    "instructions of %llu), cycles TLM %llu = RTL %llu\n",
+                    static_cast<unsigned long long>(lr.compared),
+                    static_cast<unsigned long long>(lc.interval),
+                    static_cast<unsigned long long>(lr.instructions),
+                    static_cast<unsigned long long>(lr.tlm.cycles),
+                    static_cast<unsigned long long>(lr.rtl.cycles));
+                r.cycles = lr.rtl.cycles;
+                r.modeled_ms = lr.rtl.modeled_ms;
+                r.wall_s = lr.wall_s;
+                r.phases = fw::phase_table(prog, lr.rtl.phase_cycles);
+                r.stats = lr.rtl.stats;
+            }
+            r.map.width = roi.w;
+            r.map.height = roi.h;
+            r.map.data = out.image[0].pixels;
+            return run;
+        }
+#endif
 #ifdef IMAPSIM_HAVE_TLM
         if (model == "tlm") {
             imap::tlm::OutputImages out;
+            imap::tlm::TlmConfig tcfg;
+            tcfg.observer = observer;
             const imap::tlm::TlmRunResult tr =
                 imap::tlm::run_tlm(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
-                                   fw::to_video_image(right), roi.w, roi.h, &out);
+                                   fw::to_video_image(right), roi.w, roi.h, &out, tcfg);
             fw::FrameResult& r = run.result;
             r.cycles = tr.cycles;
             r.modeled_ms = tr.modeled_ms;
@@ -98,13 +260,16 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            finish_waves(r.cycles);
             return run;
         }
 #endif
-        run.result = fw::run_frame_core(run.plan, prog, left, right, cfg);
+        run.result = fw::run_frame_core(run.plan, prog, left, right, cfg, observer);
     } catch (const isa::Fault& e) {
+        finish_waves(e.cycle());  // the waves up to the fault are the useful part
         throw UserError(std::string("machine fault: ") + e.what(), kExitFault);
     }
+    finish_waves(run.result.cycles);
     return run;
 }
 
@@ -190,18 +355,8 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
     nlohmann::json prm;
-    prm["algorithm"] = {{"D", p.D},
-                        {"km", p.km},
-                        {"kb", p.kb},
-                        {"gb", p.gb},
-                        {"Wo", p.Wo},
-                        {"Wd", p.Wd},
-                        {"mode", g::to_string(p.mode)},
-                        {"seed_col", g::seed_col_string(p.seed_col)},
-                        {"seed_disp", g::seed_disp_string(p.seed_disp)},
-                        {"vote", p.vote},
-                        {"frame", g::to_string(p.frame)},
-                        {"roi", {roi.x0, roi.y0, roi.w, roi.h}}};
+    prm["algorithm"] = algo_params_json(p);
+    prm["algorithm"]["roi"] = {roi.x0, roi.y0, roi.w, roi.h};
     nlohmann::json mach = nlohmann::json::object();
     for (const isa::ParamInfo& pi : cfg.list()) mach[pi.name] = pi.value;
     prm["machine"] = mach;

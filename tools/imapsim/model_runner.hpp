@@ -28,6 +28,16 @@ struct MachineFlags {
 void add_machine_flags(CLI::App* app, MachineFlags& f);
 imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
 
+// --model rtl / lockstep options (docs/rtl.md). set_rtl_flags() hands them
+// to run_model (kept out of its signature).
+struct RtlFlags {
+    uint64_t lockstep_interval = 1;
+    std::string inject_fault;  // INSTR:PE:REG:MASK
+    std::string trace_pes;     // a:b, none, or empty = all
+};
+void add_rtl_flags(CLI::App* app, RtlFlags& f);
+void set_rtl_flags(const RtlFlags& f);
+
 std::string model_names();                  // "tlm, core" ...
 void check_model_name(const std::string&);  // UserError if unknown
 
@@ -38,11 +48,21 @@ struct ModelRun {
     imap::firmware::FrameResult result;
 };
 
+// Waves (docs/waves.md): --vcd FILE (off when empty), --trace-pes,
+// --trace-window, --trace-signals, --trace-limit-mb.
+struct WaveFlags {
+    std::string vcd, pes, window, signals;
+    double limit_mb = 200;
+};
+void add_wave_flags(CLI::App* app, WaveFlags& f);
+
 // Plans, assembles and runs the firmware on `model`. Plan errors (does not
 // fit) are UserError (exit 2); machine faults are UserError with kExitFault.
+// With `waves` and a non-empty waves->vcd, the run is traced (core, tlm).
 ModelRun run_model(const std::string& model, const imap::golden::Params& p,
                    const imap::golden::Roi& roi, const imap::golden::ImageView& left,
-                   const imap::golden::ImageView& right, const imap::isa::MachineConfig& cfg);
+                   const imap::golden::ImageView& right, const imap::isa::MachineConfig& cfg,
+                   const WaveFlags* waves = nullptr);
 
 struct Comparison {
     bool equal = true;

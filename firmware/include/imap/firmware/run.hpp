@@ -28,9 +28,10 @@ std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& pr
                                                           const std::vector<uint64_t>& cycles);
 
 // Runs one frame on the bare machine core (the executor every model wraps).
+// `observer` (optional, e.g. the waves tracer) is attached for the run.
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
                            const golden::ImageView& left, const golden::ImageView& right,
-                           const isa::MachineConfig& cfg);
+                           const isa::MachineConfig& cfg, isa::Observer* observer = nullptr);
 
 // Copies an image view into a video-port image.
 isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v);

@@ -8,6 +8,10 @@
 
 #include "imap/isa/config.hpp"
 
+namespace imap::isa {
+class Observer;
+}
+
 namespace imap::tlm {
 
 struct TlmConfig {
@@ -17,6 +21,10 @@ struct TlmConfig {
     // as well. Larger = faster simulation, coarser interleaving with other
     // processes. Range: > 0 and at most 1 s.
     double quantum_ns = 10000.0;
+
+    // Attached to the machine before sc_start by run_tlm (waves, profiling);
+    // nullptr = none (costs nothing). Not a model parameter (not listed).
+    isa::Observer* observer = nullptr;
 
     // Throws isa::ConfigError naming the parameter, the value and the range.
     void validate() const;

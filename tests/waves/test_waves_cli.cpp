@@ -1,0 +1,116 @@
+// imapsim run --vcd end to end: the same run twice gives identical bytes, the
+// TLM model gives the same waves as the core, the VCD is well formed and the
+// .gtkw view names signals of the VCD; bad options and paths are clear errors.
+#define BOOST_TEST_MODULE waves_cli
+#include <unistd.h>
+
+#include <boost/test/unit_test.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "cli_test_util.hpp"
+#include "vcd_check.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using clitest::Result;
+using clitest::run;
+
+fs::path tmpdir() {
+    fs::path d = fs::temp_directory_path() / ("imapsim-waves-cli-" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+const char* kTrace = " --trace-pes 0:3 --trace-window 0:20000";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(core_twice_and_tlm_give_identical_well_formed_waves) {
+    const fs::path d = tmpdir();
+    const std::string a = (d / "A.vcd").string(), b = (d / "B.vcd").string(),
+                      t = (d / "T.vcd").string();
+    const Result ra = run("run --model core --vcd " + a + kTrace);
+    BOOST_TEST_INFO(ra.out);
+    BOOST_REQUIRE(ra.code == 0);
+    BOOST_TEST(ra.out.find("waves -> " + a) != std::string::npos);
+    const Result rb = run("run --model core --vcd " + b + kTrace);
+    BOOST_REQUIRE(rb.code == 0);
+    const std::string va = vcdcheck::read_all(a), vb = vcdcheck::read_all(b);
+    BOOST_TEST(va.size() > 10000u);
+    BOOST_TEST((va == vb));
+    BOOST_TEST((vcdcheck::read_all((d / "A.gtkw").string()).size() > 100u));
+
+    const Result rt = run("run --model tlm --vcd " + t + kTrace);
+    BOOST_TEST_INFO(rt.out);
+    if (rt.out.find("invalid value 'tlm' for --model") == std::string::npos) {
+        BOOST_REQUIRE(rt.code == 0);
+        BOOST_TEST((vcdcheck::read_all(t) == va));  // same machine, same waves
+    }
+
+    // Well formed: declared identifiers, increasing time, inside the window.
+    vcdcheck::Parsed p = vcdcheck::parse(va);
+    BOOST_TEST(p.error == "");
+    BOOST_TEST(p.timescale == "1ns");
+    BOOST_REQUIRE(!p.times.empty());
+    BOOST_TEST(p.times.back() <= 20100u * 25u);  // the last instruction may end after t1
+    BOOST_TEST(p.full_names.count("top.cp.instr[255:0]") == 1u);
+    BOOST_TEST(p.full_names.count("top.pe003.r15[7:0]") == 1u);
+    BOOST_TEST(p.full_names.count("top.pe004.r15[7:0]") == 0u);
+    BOOST_TEST(p.changes_by_name["top.cp.pc[10:0]"] > 1000u);
+    BOOST_TEST(p.changes_by_name["top.pe000.mem_we"] > 10u);
+
+    // The view names only signals of the VCD, and has the groups.
+    const std::string g = vcdcheck::read_all((d / "A.gtkw").string());
+    BOOST_TEST(g.find("[dumpfile] \"A.vcd\"") != std::string::npos);
+    BOOST_TEST(g.find("-PE 3") != std::string::npos);
+    const auto names = vcdcheck::gtkw_signals(g);
+    BOOST_TEST(names.size() > 20u);
+    for (const std::string& n : names) BOOST_TEST(p.full_names.count(n) == 1u, n);
+    BOOST_TEST(!fs::exists(a + ".part"));
+}
+
+BOOST_AUTO_TEST_CASE(signal_groups_and_limit) {
+    const fs::path d = tmpdir();
+    const std::string v = (d / "m.vcd").string();
+    Result r = run("run --model core --vcd " + v +
+                   " --trace-pes 5,9 --trace-window 100000:100500 --trace-signals mem,mask");
+    BOOST_REQUIRE(r.code == 0);
+    vcdcheck::Parsed p = vcdcheck::parse(vcdcheck::read_all(v));
+    BOOST_TEST(p.error == "");
+    BOOST_TEST(p.full_names.count("top.pe005.mem_addr[9:0]") == 1u);
+    BOOST_TEST(p.full_names.count("top.pe009.M") == 1u);
+    BOOST_TEST(p.full_names.count("top.pe009.r0[7:0]") == 0u);
+    BOOST_TEST(p.full_names.count("top.cp.pc[10:0]") == 0u);
+    BOOST_TEST(p.times.front() >= 100000u * 25u);
+
+    // A tiny limit: warned, stopped, still a valid file.
+    r = run("run --model core --vcd " + v + " --trace-pes 0:7 --trace-limit-mb 0.05");
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("warning:") != std::string::npos);
+    BOOST_TEST(r.out.find("stopped at --trace-limit-mb") != std::string::npos);
+    BOOST_TEST(fs::file_size(v) < 60000u);
+    p = vcdcheck::parse(vcdcheck::read_all(v));
+    BOOST_TEST(p.error == "");
+}
+
+BOOST_AUTO_TEST_CASE(errors_are_clear_and_leave_nothing) {
+    const fs::path d = tmpdir();
+    const std::string bad = (d / "no-such-dir" / "x.vcd").string();
+    Result r = run("run --model core --vcd " + bad);
+    BOOST_TEST(r.code != 0);
+    BOOST_TEST(r.out.find("cannot create") != std::string::npos);
+    BOOST_TEST(!fs::exists(bad));
+    BOOST_TEST(!fs::exists(bad + ".part"));
+    r = run("run --model core --vcd " + (d / "e.vcd").string() + " --trace-pes 300");
+    BOOST_TEST(r.code == 2);
+    BOOST_TEST(r.out.find("invalid value '300' for --trace-pes") != std::string::npos);
+    r = run("run --model core --vcd " + (d / "e.vcd").string() + " --trace-window 9:3");
+    BOOST_TEST(r.code == 2);
+    BOOST_TEST(r.out.find("for --trace-window") != std::string::npos);
+    BOOST_TEST(!fs::exists(d / "e.vcd"));
+}
