@@ -10,6 +10,7 @@ PACKAGES=(
   libboost-test-dev       # Boost.Test (unit test framework)
   libcli11-dev            # command-line parsing
   nlohmann-json3-dev      # JSON reports
+  python3                 # helper scripts (scripts/model-speed.sh)
 )
 
 missing=()
