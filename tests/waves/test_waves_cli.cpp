@@ -114,3 +114,15 @@ BOOST_AUTO_TEST_CASE(errors_are_clear_and_leave_nothing) {
     BOOST_TEST(r.out.find("for --trace-window") != std::string::npos);
     BOOST_TEST(!fs::exists(d / "e.vcd"));
 }
+
+BOOST_AUTO_TEST_CASE(vcd_on_a_model_without_tracing_is_an_input_error) {
+    const fs::path d = tmpdir();
+    const std::string vcd = (d / "rtl.vcd").string();
+    const Result r = run("run --model rtl --pes 8 --size 32x16 --D 8 --vcd " + vcd);
+    if (r.out.find("invalid value 'rtl' for --model") != std::string::npos) return;  // no RTL
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 2);
+    BOOST_TEST(r.out.find("--vcd") != std::string::npos);
+    BOOST_TEST(!fs::exists(vcd));
+    fs::remove_all(d);
+}

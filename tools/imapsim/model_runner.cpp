@@ -134,6 +134,11 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                    const isa::MachineConfig& cfg, const WaveFlags* waves) {
     ModelRun run;
     run.model = model;
+    if (waves && !waves->vcd.empty() && model != "tlm" && model != "core")
+        throw UserError(
+            "--vcd traces --model tlm or core (instruction granularity); the RTL "
+            "model's per-cycle VCD is not available yet, so --model " +
+            model + " cannot write one");
     try {
         run.plan = fw::plan_frame(p, roi, cfg);
     } catch (const fw::FirmwareError& e) {
