@@ -7,6 +7,7 @@
 #include <string>
 
 #include "imap/isa/interconnect.hpp"
+#include "imap/waves/cycle_trace.hpp"
 
 namespace imap::rtl {
 
@@ -174,7 +175,9 @@ void Array::tick() {
         return;
     }
     try {
+        traced_edge_ = false;
         cycle();
+        if (rcfg_.cycle_tracer && traced_edge_) trace_cycle(edges_ - 1);
     } catch (...) {
         fault_ = std::current_exception();
         done_ = true;
@@ -185,8 +188,10 @@ void Array::tick() {
 void Array::cycle() {
     const uint64_t edge = edges_++;
     end_strobes();
+    tmem_ = 0;
     if (k_ + 1 < cost_) {
         ++k_;
+        traced_edge_ = true;
         continue_instruction();
         return;
     }
@@ -235,6 +240,10 @@ void Array::issue() {
     }
     const isa::OpInfo* info = isa::op_info(w_.op);
     cls_ = info ? info->cost_class : isa::CostClass::Cp;
+    pc_ = pc;
+    word_ = pc < code.size() ? code[pc] : 0;
+    traced_edge_ = true;
+    pe_state_ = cls_ != isa::CostClass::Cp && cls_ != isa::CostClass::Phase;
     // The broadcast bus: the instruction just issued.
     put(cp_.pc, pc, writes_);
     cp_.instr.write(w_.encode());
@@ -262,6 +271,7 @@ void Array::issue() {
             const uint8_t* lo = m_.reg_lanes(w_.ra);
             const uint8_t* hi = (w_.imm & isa::kLdxNoHigh) ? nullptr : m_.reg_lanes(w_.rb);
             const uint8_t* mk = m_.mask_lanes();
+            tmem_ = static_cast<uint8_t>(waves::CycleInfo::Mem::Stx);
             for (int i = 0; i < count_; ++i) {
                 const int p = first_ + i;
                 if (!mk[p]) continue;
@@ -356,12 +366,15 @@ void Array::end_strobes() {
 }
 
 void Array::strobe_row(bool ext, uint32_t addr) {
+    const bool masked = !ext && w_.op != static_cast<uint8_t>(isa::Op::VIN) &&
+                        w_.op != static_cast<uint8_t>(isa::Op::XLD);
+    using Mem = waves::CycleInfo::Mem;
+    tmem_ = static_cast<uint8_t>(ext ? Mem::Ext : masked ? Mem::RowMasked : Mem::Row);
+    tmem_addr_ = addr;
     if (count_ == 0) return;
     const size_t P = static_cast<size_t>(m_.pes());
     const uint8_t* row = (ext ? m_.ext_data() : m_.mem_data()) + size_t{addr} * P;
     const uint8_t* mk = m_.mask_lanes();
-    const bool masked = !ext && w_.op != static_cast<uint8_t>(isa::Op::VIN) &&
-                        w_.op != static_cast<uint8_t>(isa::Op::XLD);
     for (int i = 0; i < count_; ++i) {
         const size_t p = static_cast<size_t>(first_ + i);
         if (masked && !mk[p]) continue;
@@ -377,6 +390,27 @@ void Array::strobe_row(bool ext, uint32_t addr) {
         }
     }
     (ext ? ext_strobe_ : mem_strobe_) = true;
+}
+
+// Hands this edge's values to the cycle tracer (only when one is set).
+void Array::trace_cycle(uint64_t edge) {
+    waves::CycleInfo c;
+    c.cycle = edge;
+    c.issue = valid_;
+    c.pc = pc_;
+    c.word = word_;
+    c.bubble = bubble_;
+    c.pe_state = valid_ && pe_state_;
+    c.ring_busy = ring_.in_transfer();
+    c.ring_hop = ring_.current_hop();
+    c.ring_up = ring_.towards_higher();
+    c.ring_src = ring_.source();
+    c.mem = static_cast<waves::CycleInfo::Mem>(tmem_);
+    c.mem_addr = tmem_addr_;
+    c.reduce = reduce_;
+    c.any = mb_.any_v;
+    c.all = mb_.all_v;
+    rcfg_.cycle_tracer->on_cycle(m_, c);
 }
 
 void Array::update_pe_state() {

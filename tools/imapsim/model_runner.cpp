@@ -13,6 +13,7 @@
 #ifdef IMAPSIM_HAVE_WAVES
 #include <memory>
 
+#include "imap/waves/cycle_trace.hpp"
 #include "imap/waves/isa_trace.hpp"
 #endif
 
@@ -134,11 +135,11 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                    const isa::MachineConfig& cfg, const WaveFlags* waves) {
     ModelRun run;
     run.model = model;
-    if (waves && !waves->vcd.empty() && model != "tlm" && model != "core")
+    if (waves && !waves->vcd.empty() && model != "tlm" && model != "core" && model != "rtl")
         throw UserError(
-            "--vcd traces --model tlm or core (instruction granularity); the RTL "
-            "model's per-cycle VCD is not available yet, so --model " +
-            model + " cannot write one");
+            "--vcd traces --model tlm or core (per instruction) or rtl (per cycle); "
+            "trace the models of a lockstep run one at a time (--model " +
+            model + " cannot write one)");
     try {
         run.plan = fw::plan_frame(p, roi, cfg);
     } catch (const fw::FirmwareError& e) {
@@ -150,7 +151,22 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
 #ifdef IMAPSIM_HAVE_WAVES
     // Waves: an observer on the machine; nothing is attached without --vcd.
     std::unique_ptr<imap::waves::IsaTracer> tracer;
+    std::unique_ptr<imap::waves::CycleTracer> cycle_tracer;  // --model rtl: per cycle
     auto finish_waves = [&](uint64_t end_cycle) {
+        if (cycle_tracer) {
+            try {
+                cycle_tracer->finish(end_cycle);
+            } catch (const imap::waves::WaveError& e) {
+                throw UserError(std::string("--vcd: ") + e.what());
+            }
+            std::printf("  waves -> %s (%.2f MB, %llu cycles traced%s) + %s\n",
+                        cycle_tracer->vcd_path().c_str(),
+                        static_cast<double>(cycle_tracer->bytes()) / 1048576.0,
+                        static_cast<unsigned long long>(cycle_tracer->traced_cycles()),
+                        cycle_tracer->limit_reached() ? ", stopped at --trace-limit-mb" : "",
+                        cycle_tracer->gtkw_path().c_str());
+            return;
+        }
         if (!tracer) return;
         try {
             tracer->finish(end_cycle);
@@ -176,7 +192,11 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                                  sel.pes.size(), static_cast<unsigned long long>(sel.t1 - sel.t0),
                                  est / 1048576.0, sel.limit_name.c_str());
             }
-            tracer = std::make_unique<imap::waves::IsaTracer>(waves->vcd, cfg, prog, sel);
+            if (model == "rtl")
+                cycle_tracer =
+                    std::make_unique<imap::waves::CycleTracer>(waves->vcd, cfg, prog, sel);
+            else
+                tracer = std::make_unique<imap::waves::IsaTracer>(waves->vcd, cfg, prog, sel);
         } catch (const imap::waves::WaveError& e) {
             throw UserError(e.what());
         }
@@ -215,6 +235,9 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             imap::tlm::OutputImages out;
             fw::FrameResult& r = run.result;
             if (model == "rtl") {
+#ifdef IMAPSIM_HAVE_WAVES
+                lc.rtl.cycle_tracer = cycle_tracer.get();
+#endif
                 const rtl::RtlRunResult rr =
                     rtl::run_rtl(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
                                  fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
@@ -245,6 +268,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            finish_waves(r.cycles);
             return run;
         }
 #endif

@@ -10,6 +10,10 @@
 
 #include "imap/isa/config.hpp"
 
+namespace imap::waves {
+class CycleObserver;  // imap/waves/cycle_trace.hpp
+}
+
 namespace imap::rtl {
 
 // XOR `mask` into one piece of PE state of the RTL model right after the
@@ -42,6 +46,9 @@ struct RtlConfig {
     // PE registers that get a signal in each traced PE; empty = all.
     std::vector<int> trace_regs;
     FaultInjection inject;
+    // Per-cycle waves: when set, the clocked process calls it once per clock
+    // edge of the run (not owned; nullptr = no tracing, no cost).
+    waves::CycleObserver* cycle_tracer = nullptr;
 
     // Throws isa::ConfigError naming the parameter, the value and the range.
     void validate(const isa::MachineConfig& cfg) const;

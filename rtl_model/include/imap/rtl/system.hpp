@@ -114,6 +114,11 @@ class Ring : public sc_core::sc_module, public isa::RingPort {
     void show_hop(uint32_t h, uint64_t& writes);
     void idle(uint64_t& writes);
     uint64_t transfers() const { return transfers_; }
+    // The transfer for the cycle tracer: source row, direction, state.
+    const uint8_t* source() const { return src_.data(); }
+    bool towards_higher() const { return towards_higher_; }
+    bool in_transfer() const { return busy_; }
+    uint32_t current_hop() const { return hop_; }
 
   private:
     int P_, first_, count_;
@@ -171,6 +176,7 @@ class Array : public sc_core::sc_module {
     void update_cp_regs();
     void strobe_row(bool ext, uint32_t addr);  // all traced PEs, data from memory
     void stop();
+    void trace_cycle(uint64_t edge);
 
     isa::Machine& m_;
     RtlConfig rcfg_;
@@ -190,6 +196,13 @@ class Array : public sc_core::sc_module {
     uint64_t cost_ = 0, k_ = 0;  // its cycles, and the current one (0 = issue)
     int64_t xloc_ = 0, xext_ = 0, xlen_ = 0;
     bool valid_ = false, bubble_ = false, mem_strobe_ = false, ext_strobe_ = false, reduce_ = false;
+    // For the cycle tracer (rcfg_.cycle_tracer): the instruction in flight and
+    // this cycle's memory strobe.
+    uint32_t pc_ = 0;
+    uint64_t word_ = 0;
+    bool traced_edge_ = false, pe_state_ = false;
+    uint8_t tmem_ = 0;  // waves::CycleInfo::Mem
+    uint32_t tmem_addr_ = 0;
 
     uint64_t edges_ = 0, index_ = 0, writes_ = 0;
     bool done_ = false, stopped_ = false, finished_ = false;
