@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "imap/isa/assembler.hpp"
 #include "imap/isa/encoding.hpp"
 #include "imap/isa/opcodes.hpp"
 #include "imap/waves/cycle_trace.hpp"
@@ -10,56 +9,17 @@ namespace imap::waves {
 
 namespace {
 
-constexpr int kInstrChars = 32;
-constexpr int kPhaseChars = 16;
 constexpr uint64_t kViewCycles = 16;
-
-int bits_for(uint64_t max_value) {
-    int b = 1;
-    while (b < 64 && (max_value >> b) != 0) ++b;
-    return b;
-}
-
-std::string pe_scope(int pe, int pes) {
-    const int digits = static_cast<int>(std::to_string(std::max(pes - 1, 0)).size());
-    std::string n = std::to_string(pe);
-    return "pe" +
-           std::string(static_cast<size_t>(std::max(0, digits - static_cast<int>(n.size()))), '0') +
-           n;
-}
-
-std::string gtkw_path_of(const std::string& vcd) {
-    const size_t slash = vcd.find_last_of('/');
-    const size_t dot = vcd.find_last_of('.');
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
-        return vcd.substr(0, dot) + ".gtkw";
-    return vcd + ".gtkw";
-}
-
-std::string base_name(const std::string& p) {
-    const size_t slash = p.find_last_of('/');
-    return slash == std::string::npos ? p : p.substr(slash + 1);
-}
-
-VcdOptions vcd_options(const isa::MachineConfig& cfg, const TraceSelection& sel) {
-    VcdOptions o;
-    o.timescale = clock_scale(cfg.clock_mhz).timescale;
-    o.limit_bytes = sel.limit_bytes;
-    o.limit_name = sel.limit_name;
-    char c[160];
-    std::snprintf(c, sizeof c,
-                  "imap-vision RTL per-cycle trace: %d PEs at %g MHz, one clock cycle = %llu "
-                  "time units",
-                  cfg.pes, cfg.clock_mhz,
-                  static_cast<unsigned long long>(clock_scale(cfg.clock_mhz).period));
-    o.comment = c;
-    return o;
-}
 
 }  // namespace
 
+using detail::base_name;
+using detail::bits_for;
+using detail::kInstrChars;
+using detail::kPhaseChars;
+
 std::string CycleTracer::gtkw_path() const {
-    return gtkw_path_of(path_);
+    return detail::gtkw_path_of(path_);
 }
 
 CycleTracer::CycleTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
@@ -69,11 +29,10 @@ CycleTracer::CycleTracer(const std::string& vcd_path, const isa::MachineConfig& 
       prog_(prog),
       sel_(sel),
       clk_(clock_scale(cfg.clock_mhz)),
-      w_(vcd_path, vcd_options(cfg, sel)),
-      g_(base_name(vcd_path)) {
+      w_(vcd_path, detail::vcd_options(cfg, sel, "RTL per-cycle trace")),
+      g_(base_name(vcd_path)),
+      disasm_(prog) {
     nregs_ = std::min(cfg.pe_regs, 16);
-    disasm_.resize(prog.code.size());
-    have_disasm_.assign(prog.code.size(), false);
     const int addr_bits = bits_for(cfg.mem_bytes > 0 ? cfg.mem_bytes - 1 : 0);
     const int ext_bits = bits_for(cfg.ext_bytes > 0 ? static_cast<uint64_t>(cfg.ext_bytes - 1) : 0);
     const int pc_bits = bits_for(prog.code.empty() ? 0 : prog.code.size() - 1);
@@ -102,31 +61,8 @@ CycleTracer::CycleTracer(const std::string& vcd_path, const isa::MachineConfig& 
         up_ = w_.add_wire("ring_up", 1);
     }
     w_.pop_scope();
-    for (const int p : sel_.pes) {
-        PeSig s{};
-        s.pe = p;
-        w_.push_scope(pe_scope(p, cfg.pes));
-        if (sel_.regs) {
-            for (int r = 0; r < nregs_; ++r) s.r.push_back(w_.add_wire("r" + std::to_string(r), 8));
-            s.c = w_.add_wire("C", 1);
-            s.t = w_.add_wire("T", 1);
-        }
-        if (sel_.mask) s.m = w_.add_wire("M", 1);
-        if (sel_.mem) {
-            s.we = w_.add_wire("mem_we", 1);
-            s.addr = w_.add_wire("mem_addr", addr_bits);
-            s.data = w_.add_wire("mem_data", 8);
-            s.ext_we = w_.add_wire("ext_we", 1);
-            s.ext_addr = w_.add_wire("ext_addr", ext_bits);
-            s.ext_data = w_.add_wire("ext_data", 8);
-        }
-        if (sel_.ring) {
-            s.ring_we = w_.add_wire("ring_we", 1);
-            s.ring_data = w_.add_wire("ring_data", 8);
-        }
-        w_.pop_scope();
-        pes_.push_back(std::move(s));
-    }
+    for (const int p : sel_.pes)
+        pes_.push_back(detail::declare_pe(w_, sel_, p, cfg.pes, nregs_, addr_bits, ext_bits));
     w_.pop_scope();
 
     // The view: as IsaTracer's (CP first, then one group per PE).
@@ -159,30 +95,8 @@ CycleTracer::CycleTracer(const std::string& vcd_path, const isa::MachineConfig& 
         g_.end_group();
     }
     bool first = true;
-    for (const PeSig& s : pes_) {
-        const std::string name = "PE " + std::to_string(s.pe);
-        g_.begin_group(name);
-        if (sel_.mem) {
-            g_.add_signal(w_.full_name(s.we), Format::Bin);
-            g_.add_signal(w_.full_name(s.addr), Format::Hex);
-            g_.add_signal(w_.full_name(s.data), Format::Hex);
-            g_.add_signal(w_.full_name(s.ext_we), Format::Bin);
-            g_.add_signal(w_.full_name(s.ext_addr), Format::Hex);
-            g_.add_signal(w_.full_name(s.ext_data), Format::Hex);
-        }
-        if (sel_.ring) {
-            g_.add_signal(w_.full_name(s.ring_we), Format::Bin);
-            g_.add_signal(w_.full_name(s.ring_data), Format::Hex);
-        }
-        if (sel_.mask) g_.add_signal(w_.full_name(s.m), Format::Bin);
-        if (sel_.regs) {
-            g_.add_signal(w_.full_name(s.c), Format::Bin);
-            g_.add_signal(w_.full_name(s.t), Format::Bin);
-            g_.begin_group(name + " registers", !first);
-            for (const SignalId r : s.r) g_.add_signal(w_.full_name(r), Format::Hex);
-            g_.end_group();
-        }
-        g_.end_group();
+    for (const detail::PeSignals& s : pes_) {
+        detail::view_pe(g_, w_, sel_, s, true, first);
         first = false;
     }
     w_.begin();
@@ -190,29 +104,6 @@ CycleTracer::CycleTracer(const std::string& vcd_path, const isa::MachineConfig& 
 
 CycleTracer::~CycleTracer() {
     if (!done_) w_.abandon();
-}
-
-const std::string& CycleTracer::text_of(uint32_t pc) {
-    static const std::string none;
-    if (pc >= disasm_.size()) return none;
-    if (!have_disasm_[pc]) {
-        std::string t;
-        try {
-            t = isa::disassemble_word(prog_.code[pc]);
-        } catch (const std::exception&) {
-            t = "?";
-        }
-        std::string c;
-        for (const char ch : t) {
-            const bool sp = ch == ' ' || ch == '\t';
-            if (sp && (c.empty() || c.back() == ' ')) continue;
-            c.push_back(sp ? ' ' : ch);
-        }
-        while (!c.empty() && c.back() == ' ') c.pop_back();
-        disasm_[pc] = c;
-        have_disasm_[pc] = true;
-    }
-    return disasm_[pc];
 }
 
 void CycleTracer::sample_state(const isa::Machine& m, bool pes) {
@@ -226,7 +117,7 @@ void CycleTracer::sample_state(const isa::Machine& m, bool pes) {
     const uint8_t* C = m.carry_lanes();
     const uint8_t* T = m.test_lanes();
     const uint8_t* M = m.mask_lanes();
-    for (const PeSig& s : pes_) {
+    for (const detail::PeSignals& s : pes_) {
         if (sel_.regs) {
             for (int r = 0; r < nregs_; ++r) w_.change(s.r[r], m.reg_lanes(r)[s.pe]);
             w_.change(s.c, C[s.pe]);
@@ -254,7 +145,7 @@ void CycleTracer::on_cycle(const isa::Machine& m, const CycleInfo& c) {
     if (sel_.cp) {
         if (first || c.issue) {
             w_.change(pc_, c.pc);
-            w_.change_text(instr_, text_of(c.pc));
+            w_.change_text(instr_, disasm_.text(c.pc));
         }
         w_.change(valid_, c.issue);
         w_.change(bubble_, c.bubble);
@@ -281,7 +172,7 @@ void CycleTracer::on_cycle(const isa::Machine& m, const CycleInfo& c) {
         }
         const bool hop = c.ring_busy && c.ring_src && c.ring_hop > 0;
         const size_t sh = hop ? static_cast<size_t>(c.ring_hop - 1) % P : 0;
-        for (const PeSig& s : pes_) {
+        for (const detail::PeSignals& s : pes_) {
             w_.change(s.ring_we, hop);
             if (hop) {
                 const size_t p = static_cast<size_t>(s.pe);
@@ -303,7 +194,7 @@ void CycleTracer::on_cycle(const isa::Machine& m, const CycleInfo& c) {
                             : 0) +
                        isa::ldx_offset(w.imm);
         }
-        for (const PeSig& s : pes_) {
+        for (const detail::PeSignals& s : pes_) {
             const size_t p = static_cast<size_t>(s.pe);
             bool we = false;
             if (local && (c.mem == Mem::Row || M[p])) {

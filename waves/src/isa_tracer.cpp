@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <iostream>
 
-#include "imap/isa/assembler.hpp"
 #include "imap/isa/encoding.hpp"
 #include "imap/isa/opcodes.hpp"
 #include "imap/waves/isa_trace.hpp"
@@ -12,52 +11,14 @@ namespace imap::waves {
 
 namespace {
 
-constexpr int kInstrChars = 32;
-constexpr int kPhaseChars = 16;
 constexpr uint64_t kViewCycles = 16;
 
-int bits_for(uint64_t max_value) {
-    int b = 1;
-    while (b < 64 && (max_value >> b) != 0) ++b;
-    return b;
-}
-
-std::string pe_scope(int pe, int pes) {
-    const int digits = static_cast<int>(std::to_string(std::max(pes - 1, 0)).size());
-    std::string n = std::to_string(pe);
-    return "pe" +
-           std::string(static_cast<size_t>(std::max(0, digits - static_cast<int>(n.size()))), '0') +
-           n;
-}
-
-std::string gtkw_path_of(const std::string& vcd) {
-    const size_t slash = vcd.find_last_of('/');
-    const size_t dot = vcd.find_last_of('.');
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
-        return vcd.substr(0, dot) + ".gtkw";
-    return vcd + ".gtkw";
-}
-
-std::string base_name(const std::string& p) {
-    const size_t slash = p.find_last_of('/');
-    return slash == std::string::npos ? p : p.substr(slash + 1);
-}
-
-VcdOptions vcd_options(const isa::MachineConfig& cfg, const TraceSelection& sel) {
-    VcdOptions o;
-    o.timescale = clock_scale(cfg.clock_mhz).timescale;
-    o.limit_bytes = sel.limit_bytes;
-    o.limit_name = sel.limit_name;
-    char c[160];
-    std::snprintf(
-        c, sizeof c,
-        "imap-vision ISA-level trace: %d PEs at %g MHz, one clock cycle = %llu time units", cfg.pes,
-        cfg.clock_mhz, static_cast<unsigned long long>(clock_scale(cfg.clock_mhz).period));
-    o.comment = c;
-    return o;
-}
-
 }  // namespace
+
+using detail::base_name;
+using detail::bits_for;
+using detail::kInstrChars;
+using detail::kPhaseChars;
 
 double IsaTracer::estimate_bytes(const TraceSelection& sel, uint64_t cycles) {
     return static_cast<double>(cycles) * (kBytesPerPeCycle * static_cast<double>(sel.pes.size()) +
@@ -65,7 +26,7 @@ double IsaTracer::estimate_bytes(const TraceSelection& sel, uint64_t cycles) {
 }
 
 std::string IsaTracer::gtkw_path() const {
-    return gtkw_path_of(path_);
+    return detail::gtkw_path_of(path_);
 }
 
 IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
@@ -75,11 +36,10 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
       prog_(prog),
       sel_(sel),
       clk_(clock_scale(cfg.clock_mhz)),
-      w_(vcd_path, vcd_options(cfg, sel)),
-      g_(base_name(vcd_path)) {
+      w_(vcd_path, detail::vcd_options(cfg, sel, "ISA-level trace")),
+      g_(base_name(vcd_path)),
+      disasm_(prog) {
     nregs_ = std::min(cfg.pe_regs, 16);
-    disasm_.resize(prog.code.size());
-    have_disasm_.assign(prog.code.size(), false);
     const int addr_bits = bits_for(cfg.mem_bytes > 0 ? cfg.mem_bytes - 1 : 0);
     const int pc_bits = bits_for(prog.code.empty() ? 0 : prog.code.size() - 1);
 
@@ -97,28 +57,8 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
         active_ = w_.add_wire("active_pes", bits_for(static_cast<uint64_t>(cfg.pes)));
     }
     w_.pop_scope();
-    for (const int p : sel_.pes) {
-        PeSig s{};
-        s.pe = p;
-        w_.push_scope(pe_scope(p, cfg.pes));
-        if (sel_.regs) {
-            for (int r = 0; r < nregs_; ++r) s.r.push_back(w_.add_wire("r" + std::to_string(r), 8));
-            s.c = w_.add_wire("C", 1);
-            s.t = w_.add_wire("T", 1);
-        }
-        if (sel_.mask) s.m = w_.add_wire("M", 1);
-        if (sel_.mem) {
-            s.we = w_.add_wire("mem_we", 1);
-            s.addr = w_.add_wire("mem_addr", addr_bits);
-            s.data = w_.add_wire("mem_data", 8);
-        }
-        if (sel_.ring) {
-            s.ring_we = w_.add_wire("ring_we", 1);
-            s.ring_data = w_.add_wire("ring_data", 8);
-        }
-        w_.pop_scope();
-        pes_.push_back(std::move(s));
-    }
+    for (const int p : sel_.pes)
+        pes_.push_back(detail::declare_pe(w_, sel_, p, cfg.pes, nregs_, addr_bits, 0));
     w_.pop_scope();
 
     // The view: CP first, then one group per PE (its registers in a
@@ -142,27 +82,8 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
         g_.end_group();
     }
     bool first = true;
-    for (const PeSig& s : pes_) {
-        const std::string name = "PE " + std::to_string(s.pe);
-        g_.begin_group(name);
-        if (sel_.mem) {
-            g_.add_signal(w_.full_name(s.we), Format::Bin);
-            g_.add_signal(w_.full_name(s.addr), Format::Hex);
-            g_.add_signal(w_.full_name(s.data), Format::Hex);
-        }
-        if (sel_.ring) {
-            g_.add_signal(w_.full_name(s.ring_we), Format::Bin);
-            g_.add_signal(w_.full_name(s.ring_data), Format::Hex);
-        }
-        if (sel_.mask) g_.add_signal(w_.full_name(s.m), Format::Bin);
-        if (sel_.regs) {
-            g_.add_signal(w_.full_name(s.c), Format::Bin);
-            g_.add_signal(w_.full_name(s.t), Format::Bin);
-            g_.begin_group(name + " registers", !first);
-            for (const SignalId r : s.r) g_.add_signal(w_.full_name(r), Format::Hex);
-            g_.end_group();
-        }
-        g_.end_group();
+    for (const detail::PeSignals& s : pes_) {
+        detail::view_pe(g_, w_, sel_, s, false, first);
         first = false;
     }
     w_.begin();
@@ -170,28 +91,6 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
 
 IsaTracer::~IsaTracer() {
     if (!done_) w_.abandon();
-}
-
-const std::string& IsaTracer::text_of(uint32_t pc) {
-    if (!have_disasm_[pc]) {
-        std::string t;
-        try {
-            t = isa::disassemble_word(prog_.code[pc]);
-        } catch (const std::exception&) {
-            t = "?";
-        }
-        // Collapse white space so the text fits the signal.
-        std::string c;
-        for (const char ch : t) {
-            const bool sp = ch == ' ' || ch == '\t';
-            if (sp && (c.empty() || c.back() == ' ')) continue;
-            c.push_back(sp ? ' ' : ch);
-        }
-        while (!c.empty() && c.back() == ' ') c.pop_back();
-        disasm_[pc] = c;
-        have_disasm_[pc] = true;
-    }
-    return disasm_[pc];
 }
 
 void IsaTracer::sample_state(const isa::Machine& m) {
@@ -204,7 +103,7 @@ void IsaTracer::sample_state(const isa::Machine& m) {
     const uint8_t* C = m.carry_lanes();
     const uint8_t* T = m.test_lanes();
     const uint8_t* M = m.mask_lanes();
-    for (const PeSig& s : pes_) {
+    for (const detail::PeSignals& s : pes_) {
         if (sel_.regs) {
             for (int r = 0; r < nregs_; ++r) w_.change(s.r[r], m.reg_lanes(r)[s.pe]);
             w_.change(s.c, C[s.pe]);
@@ -229,7 +128,7 @@ void IsaTracer::on_instruction(const isa::Machine& m, const isa::TraceEvent& e) 
     const uint32_t ph = m.current_phase();
     if (sel_.cp) {
         w_.change(pc_, e.pc);
-        w_.change_text(instr_, text_of(e.pc));
+        w_.change_text(instr_, disasm_.text(e.pc));
         if (ph != last_phase_) w_.change_text(phase_, prog_.phase_name(ph));
     }
     if (ph != last_phase_) {
@@ -246,7 +145,7 @@ void IsaTracer::on_instruction(const isa::Machine& m, const isa::TraceEvent& e) 
         w.op == static_cast<uint8_t>(isa::Op::RXL) || w.op == static_cast<uint8_t>(isa::Op::RXR);
     if ((sel_.mem && (st || stx)) || (sel_.ring && ring)) {
         const uint8_t* M = m.mask_lanes();
-        for (const PeSig& s : pes_) {
+        for (const detail::PeSignals& s : pes_) {
             if (sel_.mem && (st || stx)) {
                 int64_t addr = 0;
                 if (st) {
@@ -270,7 +169,7 @@ void IsaTracer::on_instruction(const isa::Machine& m, const isa::TraceEvent& e) 
         }
     }
     w_.set_time(ta);
-    for (const PeSig& s : pes_) {
+    for (const detail::PeSignals& s : pes_) {
         if (sel_.mem) w_.change(s.we, 0);
         if (sel_.ring) w_.change(s.ring_we, 0);
     }

@@ -14,6 +14,7 @@
 #include "imap/isa/program.hpp"
 #include "imap/waves/gtkw.hpp"
 #include "imap/waves/isa_trace.hpp"
+#include "imap/waves/trace_common.hpp"
 #include "imap/waves/vcd.hpp"
 
 namespace imap::waves {
@@ -65,13 +66,7 @@ class CycleTracer : public CycleObserver {
     uint64_t traced_cycles() const { return traced_; }
 
   private:
-    struct PeSig {
-        int pe;
-        std::vector<SignalId> r;
-        SignalId c, t, m, we, addr, data, ext_we, ext_addr, ext_data, ring_we, ring_data;
-    };
     void sample_state(const isa::Machine& m, bool pes);
-    const std::string& text_of(uint32_t pc);
 
     std::string path_;
     isa::MachineConfig cfg_;
@@ -84,9 +79,8 @@ class CycleTracer : public CycleObserver {
     SignalId pc_ = 0, instr_ = 0, phase_ = 0, valid_ = 0, bubble_ = 0, msp_ = 0, active_ = 0,
              reduce_ = 0, any_ = 0, all_ = 0, busy_ = 0, hop_ = 0, up_ = 0;
     std::vector<SignalId> creg_;
-    std::vector<PeSig> pes_;
-    std::vector<std::string> disasm_;
-    std::vector<bool> have_disasm_;
+    std::vector<detail::PeSignals> pes_;
+    detail::DisasmCache disasm_;
     uint32_t last_phase_ = UINT32_MAX;
     uint64_t last_cycle_ = 0, traced_ = 0, first_time_ = 0;
     bool started_ = false, done_ = false;

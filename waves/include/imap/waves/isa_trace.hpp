@@ -12,6 +12,7 @@
 #include "imap/isa/machine.hpp"
 #include "imap/isa/program.hpp"
 #include "imap/waves/gtkw.hpp"
+#include "imap/waves/trace_common.hpp"
 #include "imap/waves/vcd.hpp"
 
 namespace imap::waves {
@@ -71,13 +72,7 @@ class IsaTracer : public isa::Observer {
     static double estimate_bytes(const TraceSelection& sel, uint64_t cycles);
 
   private:
-    struct PeSig {
-        int pe;
-        std::vector<SignalId> r;
-        SignalId c, t, m, we, addr, data, ring_we, ring_data;
-    };
     void sample_state(const isa::Machine& m);
-    const std::string& text_of(uint32_t pc);
 
     std::string path_;
     isa::MachineConfig cfg_;
@@ -89,9 +84,8 @@ class IsaTracer : public isa::Observer {
     int nregs_ = 16;
     SignalId pc_ = 0, instr_ = 0, phase_ = 0, cycle_ = 0, msp_ = 0, active_ = 0;
     std::vector<SignalId> creg_;
-    std::vector<PeSig> pes_;
-    std::vector<std::string> disasm_;
-    std::vector<bool> have_disasm_;
+    std::vector<detail::PeSignals> pes_;
+    detail::DisasmCache disasm_;
     uint32_t last_phase_ = UINT32_MAX;
     uint64_t last_cycle_ = 0, traced_ = 0;
     bool started_ = false, done_ = false;
