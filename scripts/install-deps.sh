@@ -11,6 +11,7 @@ PACKAGES=(
   libcli11-dev            # command-line parsing
   nlohmann-json3-dev      # JSON reports
   python3                 # helper scripts (scripts/model-speed.sh)
+  valgrind                # memcheck test of a TLM run (scripts/valgrind.sh, CTest valgrind.tlm_run)
 )
 
 missing=()

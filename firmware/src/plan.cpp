@@ -67,8 +67,9 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     if (f.mem_needed > int64_t{cfg.mem_bytes} || f.ext_needed > int64_t{cfg.ext_bytes}) {
         std::ostringstream os;
         os << "does not fit: needs " << f.mem_needed << " bytes of local memory per PE (have "
-           << cfg.mem_bytes << ") and " << f.ext_needed
-           << " bytes of external memory per PE for the pointers (have " << cfg.ext_bytes << ")";
+           << cfg.mem_bytes << ", mem_bytes) and " << f.ext_needed
+           << " bytes of external memory per PE for the pointers (have " << cfg.ext_bytes
+           << ", ext_bytes)";
         throw FirmwareError(os.str());
     }
     return f;
@@ -155,7 +156,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     if (fp.mem_needed > int64_t{cfg.mem_bytes}) {
         std::ostringstream os;
         os << "does not fit: needs " << fp.mem_needed << " bytes of local memory per PE, have "
-           << cfg.mem_bytes;
+           << cfg.mem_bytes << " (mem_bytes)";
         throw FirmwareError(os.str());
     }
     return fp;

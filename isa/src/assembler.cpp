@@ -302,8 +302,21 @@ class Expr {
         throw ExprError{op.col, "unknown operator '" + o + "'"};
     }
 
+    // Nesting of parentheses and unary operators is bounded: the parser is
+    // recursive, and a deep enough nest would overflow the stack.
+    static constexpr int kMaxDepth = 256;
+
     int64_t unary() {
         if (pos_ >= end_) throw ExprError{col_at(pos_), "expected a value"};
+        if (++depth_ > kMaxDepth)
+            throw ExprError{t_[pos_].col, "expression nested too deeply (more than " +
+                                              std::to_string(kMaxDepth) + " levels)"};
+        const int64_t v = operand();
+        --depth_;
+        return v;
+    }
+
+    int64_t operand() {
         const Token& tk = t_[pos_];
         if (tk.is("-")) {
             ++pos_;
@@ -356,6 +369,7 @@ class Expr {
     const std::vector<Token>& t_;
     size_t pos_, end_;
     const Lookup& look_;
+    int depth_ = 0;
 };
 
 // ---------------------------------------------------------------------------
@@ -519,10 +533,13 @@ class Assembler {
     }
 
     // Index of the line closing a block opened at `i` (.macro/.endm, .rept/.endr).
-    static size_t find_close(const std::vector<Line>& lines, size_t i, size_t end, const char* open,
-                             const char* close) {
+    // Scanned lines count against the expansion budget: a nested block is
+    // scanned again on every expansion of the blocks around it.
+    size_t find_close(const std::vector<Line>& lines, size_t i, size_t end, const char* open,
+                      const char* close) {
         int depth = 0;
         for (size_t j = i; j < end; ++j) {
+            budget(lines[j]);
             const std::string w = first_word(lines[j].text);
             if (w == open)
                 ++depth;

@@ -149,7 +149,12 @@ std::string format(uint64_t word, const Namer& target) {
 
 std::string hex_word(uint64_t w) {
     char b[32];
-    std::snprintf(b, sizeof b, ".word 0x%016" PRIx64, w);
+    // Numbers in the assembler are signed 64-bit: a word with the top bit set
+    // is written as the complement of one without it.
+    if (w >> 63)
+        std::snprintf(b, sizeof b, ".word ~0x%016" PRIx64, ~w);
+    else
+        std::snprintf(b, sizeof b, ".word 0x%016" PRIx64, w);
     return b;
 }
 

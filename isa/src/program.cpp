@@ -8,11 +8,21 @@
 
 namespace imap::isa {
 
+namespace {
+// A name read from a file, safe for a one-line message: control characters
+// become '?'.
+std::string printable(std::string s) {
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s;
+}
+}  // namespace
+
 std::string Program::location(uint32_t pc) const {
     if (pc >= source_map.size()) return "";
     const SourceLoc& l = source_map[pc];
     if (l.file >= files.size() || l.line == 0) return "";
-    return files[l.file] + ":" + std::to_string(l.line);
+    return printable(files[l.file]) + ":" + std::to_string(l.line);
 }
 
 std::string Program::phase_name(uint32_t id) const {
@@ -171,7 +181,8 @@ Program deserialize(const std::vector<uint8_t>& in, const std::string& name) {
         std::string s = r.str("symbol name");
         const uint32_t pc = r.u32("symbol value");
         if (pc > n_code)
-            r.fail("symbol '" + s + "' at PC " + std::to_string(pc) + " beyond the code");
+            r.fail("symbol '" + printable(s) + "' at PC " + std::to_string(pc) +
+                   " beyond the code");
         p.symbols[s] = pc;
     }
     if (flags & 1) {

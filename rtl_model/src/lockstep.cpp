@@ -1,4 +1,5 @@
 #include "imap/rtl/lockstep.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <array>
 #include <chrono>
@@ -313,6 +314,7 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
 
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();
     const auto t1 = std::chrono::steady_clock::now();
     tsys->machine().set_observer(nullptr);
 

@@ -1,4 +1,5 @@
 #include "imap/rtl/system.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -546,6 +547,7 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
     sys->make_output(1, out_w, out_h);
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();
     const auto t1 = std::chrono::steady_clock::now();
     sys->rethrow_if_faulted();
     if (!sys->array.finished())

@@ -252,7 +252,7 @@ const VideoSource::Image& VideoSource::output(int port) const {
     return images_.output[port];
 }
 
-bool VideoSource::transfer(::tlm::tlm_generic_payload& tr) {
+bool VideoSource::transfer(::tlm::tlm_generic_payload& tr, bool debug) {
     VideoLine* line = nullptr;
     tr.get_extension(line);
     if (!line) {
@@ -265,11 +265,17 @@ bool VideoSource::transfer(::tlm::tlm_generic_payload& tr) {
     }
     const int port = static_cast<int>(std::min<sc_dt::uint64>(tr.get_address(), INT_MAX));
     const int n = static_cast<int>(tr.get_data_length());
+    if (stream_ && debug) {
+        line->error = "debug access to a streamed video path";
+        tr.set_response_status(::tlm::TLM_COMMAND_ERROR_RESPONSE);
+        return false;
+    }
     try {
+        isa::VideoPort* const path = stream_ ? stream_ : &images_;
         if (tr.is_read())
-            images_.read_line(port, line->y, line->x0, tr.get_data_ptr(), n);
+            path->read_line(port, line->y, line->x0, tr.get_data_ptr(), n);
         else if (tr.is_write())
-            images_.write_line(port, line->y, line->x0, tr.get_data_ptr(), n);
+            path->write_line(port, line->y, line->x0, tr.get_data_ptr(), n);
     } catch (const std::exception& e) {
         line->error = e.what();
         tr.set_response_status(::tlm::TLM_ADDRESS_ERROR_RESPONSE);
@@ -280,8 +286,9 @@ bool VideoSource::transfer(::tlm::tlm_generic_payload& tr) {
 }
 
 void VideoSource::b_transport(::tlm::tlm_generic_payload& tr, sc_core::sc_time&) {
-    // No delay annotated [A]: see the class comment.
-    if (!transfer(tr)) {
+    // No delay annotated [A]: see the class comment. A streamed path may
+    // wait() for a line that has not arrived yet (the CP stalls).
+    if (!transfer(tr, false)) {
         ++stats_.errors;
         return;
     }
@@ -290,7 +297,7 @@ void VideoSource::b_transport(::tlm::tlm_generic_payload& tr, sc_core::sc_time&)
 }
 
 unsigned VideoSource::transport_dbg(::tlm::tlm_generic_payload& tr) {
-    return transfer(tr) ? tr.get_data_length() : 0;
+    return transfer(tr, true) ? tr.get_data_length() : 0;
 }
 
 }  // namespace imap::tlm

@@ -69,22 +69,55 @@ void Cp::sync_now() {
     ++syncs_;
 }
 
-void Cp::thread() {
-    try {
-        acquire_dmi();
-        qk_.reset();
-        synced_cycles_ = m_->cycles();
-        while (!m_->halted()) {
-            ++chunks_;
-            m_->run(quantum_end_cycle());
-            set_local_time();
-            if (qk_.need_sync()) sync_now();
-        }
-        // Hand the last partial quantum to the kernel: at the end
-        // sc_time_stamp() == cycles x period.
+void Cp::start() {
+    if (!tcfg_.hosted)
+        throw std::logic_error("Cp::start: the CP is not hosted (TlmConfig::hosted)");
+    if (busy()) throw std::logic_error("Cp::start: the CP is still running the previous program");
+    m_->reset();
+    fault_ = nullptr;
+    finished_ = false;
+    stall_ = sc_core::SC_ZERO_TIME;
+    start_pending_ = true;
+    start_ev_.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Cp::run_program() {
+    qk_.reset();
+    synced_cycles_ = m_->cycles();
+    while (!m_->halted()) {
+        ++chunks_;
+        m_->run(quantum_end_cycle());
         set_local_time();
-        sync_now();
-        finished_ = true;
+        if (qk_.need_sync()) sync_now();
+    }
+    // Hand the last partial quantum to the kernel: at the end
+    // sc_time_stamp() == start + cycles x period (+ video stalls).
+    set_local_time();
+    sync_now();
+    finished_ = true;
+}
+
+void Cp::thread() {
+    acquire_dmi();
+    if (tcfg_.hosted) {
+        for (;;) {
+            while (!start_pending_) sc_core::wait(start_ev_);
+            start_pending_ = false;
+            running_ = true;
+            try {
+                run_program();
+            } catch (...) {
+                // This run ends; the testbench reads fault() and goes on.
+                fault_ = std::current_exception();
+                set_local_time();
+                sync_now();
+            }
+            running_ = false;
+            done_ev_.notify(sc_core::SC_ZERO_TIME);
+        }
+    }
+    try {
+        run_program();
     } catch (...) {
         fault_ = std::current_exception();
         // The fault is reported by whoever catches it; keep the kernel's
@@ -117,18 +150,22 @@ void Cp::video_transfer(bool write, int port, int y, int x0, uint8_t* data, int 
     ext_.x0 = x0;
     ext_.error.clear();
     tr_.set_extension(&ext_);
+    // A streamed video source may block in b_transport until the line has
+    // arrived, or annotate the wait as a delay: either way the CP stalls.
+    const sc_core::sc_time before = sc_core::sc_time_stamp();
     sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
     video->b_transport(tr_, delay);
     tr_.clear_extension(&ext_);
+    if (delay != sc_core::SC_ZERO_TIME) sc_core::wait(delay);
+    if (sc_core::sc_time_stamp() != before) {
+        stall_ += sc_core::sc_time_stamp() - before;
+        qk_.reset();  // local time 0 from here; the quantum restarts
+        synced_cycles_ = m_->cycles();
+    }
     if (tr_.is_response_error())
         throw std::runtime_error(ext_.error.empty()
                                      ? std::string(video.name()) + ": " + tr_.get_response_string()
                                      : ext_.error);
-    if (delay != sc_core::SC_ZERO_TIME)
-        throw std::runtime_error(
-            std::string(video.name()) + ": the video target annotated a delay of " +
-            delay.to_string() +
-            "; the model charges video_line cycles per line and has no video stall cycles");
 }
 
 void Cp::mem_row(bool write, uint32_t addr, uint8_t* data, int n) {

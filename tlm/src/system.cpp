@@ -1,4 +1,5 @@
 #include "imap/tlm/system.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -80,6 +81,7 @@ TlmRunResult run_tlm(const isa::MachineConfig& cfg, const isa::Program& prog,
     if (tcfg.observer) sys->machine().set_observer(tcfg.observer);
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();
     const auto t1 = std::chrono::steady_clock::now();
     sys->rethrow_if_faulted();
     if (!sys->cp.finished())

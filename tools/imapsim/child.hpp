@@ -2,6 +2,8 @@
 // process, so every model run that needs its own elaboration is a child.
 #pragma once
 
+#include <sys/types.h>
+
 #include <string>
 #include <vector>
 
@@ -17,5 +19,16 @@ std::string self_exe();
 
 // Runs `self_exe() args...` and waits for it; output is captured.
 ChildResult run_self(const std::vector<std::string>& args);
+
+// Starts argv (argv[0] = the program's path) without waiting: standard input
+// from /dev/null, standard output and error into the file `log`. Returns the
+// pid, or -1 when the process cannot be started (the reason is appended to
+// `log` as an "imapsim: error: ..." line).
+pid_t spawn_logged(const std::vector<std::string>& argv, const std::string& log);
+
+// A word quoted for a POSIX shell (unchanged when it needs no quotes), and a
+// whole command line of such words (for "rerun with" hints in reports).
+std::string shell_quote(const std::string& s);
+std::string command_line(const std::vector<std::string>& argv);
 
 }  // namespace imapsim

@@ -1,7 +1,10 @@
 #include "cli_common.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 namespace imapsim {
@@ -25,6 +28,40 @@ long long parse_int_flag(const std::string& flag, const std::string& text, long 
         throw UserError("value " + text + " for " + flag +
                         " is out of range (allowed: " + range.str() + ")");
     return v;
+}
+
+double parse_real_flag(const std::string& flag, const std::string& text, double lo, double hi,
+                       bool lo_open) {
+    std::ostringstream range;
+    range << (lo_open ? "> " : ">= ") << lo << " and <= " << hi;
+    errno = 0;
+    char* end = nullptr;
+    const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || errno != 0 || end == text.c_str() || *end != '\0' || !std::isfinite(v))
+        throw UserError("invalid value '" + text + "' for " + flag + ": expected a number " +
+                        range.str());
+    if ((lo_open ? v <= lo : v < lo) || v > hi)
+        throw UserError("value " + text + " for " + flag +
+                        " is out of range (allowed: " + range.str() + ")");
+    return v;
+}
+
+void check_output_file(const std::string& flag, const std::string& path, bool image) {
+    namespace fs = std::filesystem;
+    if (path.empty()) return;
+    const fs::path p(path);
+    const fs::path dir = p.parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec))
+        throw UserError(flag + " '" + path + "': cannot create it: " +
+                        (fs::exists(dir, ec) ? "'" + dir.string() + "' is not a folder"
+                                             : "folder '" + dir.string() + "' does not exist"));
+    if (fs::is_directory(p, ec)) throw UserError(flag + " '" + path + "': is a folder");
+    if (image && !cv::haveImageWriter(path))
+        throw UserError(flag + " '" + path + "': cannot write this image type" +
+                        (p.extension().empty() ? std::string(" (no extension)")
+                                               : " ('" + p.extension().string() + "')") +
+                        "; use e.g. .png");
 }
 
 nlohmann::json algo_params_json(const g::Params& p) {

@@ -15,10 +15,13 @@ namespace imapsim {
 // Exit codes (docs/errors.md).
 enum ExitCode : int {
     kExitOk = 0,
-    kExitMismatch = 1,  // ran, but the model's output differs from the golden
-    kExitInput = 2,     // bad flags or input files; nothing written
-    kExitFault = 3,     // the modeled machine faulted (bad address, runaway, ...)
-    kExitInternal = 4,  // unexpected internal error
+    kExitMismatch = 1,       // ran, but the model's output differs from the golden
+    kExitInput = 2,          // bad flags or input files; nothing written
+    kExitFault = 3,          // the modeled machine faulted (bad address, runaway, ...)
+    kExitInternal = 4,       // unexpected internal error
+    kExitItemErrors = 5,     // stream / sweep ran to the end, but some frames or points
+                             // failed (bad frame, machine fault); each is in the log
+    kExitInterrupted = 130,  // stopped by SIGINT / SIGTERM; partial results written
 };
 
 // A user-facing error: printed as "imapsim: error: <what>" and mapped to an exit code.
@@ -60,6 +63,16 @@ nlohmann::json algo_params_json(const imap::golden::Params& p);
 long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
                          long long hi);
 
+// Strict real-number parse of a flag value (finite, lo < v <= hi when
+// lo_open, else lo <= v <= hi); the error names the flag and the range.
+double parse_real_flag(const std::string& flag, const std::string& text, double lo, double hi,
+                       bool lo_open);
+
+// Checks, before the work, that `path` (given with `flag`) can be written
+// later: its folder exists and it is not a folder; with `image`, OpenCV can
+// write its extension. UserError (exit 2) otherwise; nothing when empty.
+void check_output_file(const std::string& flag, const std::string& path, bool image);
+
 // Each subcommand registers itself on the app and returns a runner that is
 // called if the subcommand was selected. The runner returns the exit code.
 using Runner = std::function<int()>;
@@ -74,7 +87,11 @@ Subcommand register_synth(CLI::App& app);
 Subcommand register_run(CLI::App& app);
 Subcommand register_asm(CLI::App& app);
 Subcommand register_disasm(CLI::App& app);
+Subcommand register_exec(CLI::App& app);
 Subcommand register_regress(CLI::App& app);
 Subcommand register_bench(CLI::App& app);
+Subcommand register_stream(CLI::App& app);
+Subcommand register_sweep(CLI::App& app);
+Subcommand register_table1(CLI::App& app);
 
 }  // namespace imapsim

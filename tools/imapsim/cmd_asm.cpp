@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "asm_flags.hpp"
 #include "cli_common.hpp"
 #include "imap/isa/assembler.hpp"
 #include "imap/isa/program.hpp"
@@ -14,6 +15,37 @@
 namespace imapsim {
 
 namespace isa = imap::isa;
+
+isa::AsmOptions asm_options(const std::vector<std::string>& defines) {
+    isa::AsmOptions opt;
+    for (const std::string& d : defines) {
+        std::pair<std::string, int64_t> def;
+        try {
+            def = isa::parse_define(d);
+        } catch (const std::invalid_argument& e) {
+            throw UserError(e.what());
+        }
+        if (opt.defines.count(def.first))
+            throw UserError("-D " + def.first + " given more than once");
+        opt.defines.insert(def);
+    }
+    return opt;
+}
+
+isa::Program assemble_or_report(const std::string& src, const isa::AsmOptions& opt,
+                                const std::string& outcome) {
+    try {
+        return isa::assemble_file(src, opt);
+    } catch (const isa::AsmError& e) {
+        const auto& ds = e.diagnostics();
+        if (ds.size() == 1 && ds[0].line == 0) throw UserError(ds[0].message);  // unreadable
+        for (const isa::Diagnostic& d : ds) std::cerr << d.str() << "\n";
+        size_t n = 0;
+        for (const isa::Diagnostic& d : ds) n += d.message.rfind("too many errors", 0) != 0;
+        throw UserError(src + " does not assemble (" + std::to_string(n) + " error" +
+                        (n == 1 ? "" : "s") + "); " + outcome);
+    }
+}
 
 namespace {
 
@@ -67,34 +99,11 @@ Subcommand register_asm(CLI::App& app) {
     sub->add_option("--listing", o->listing, "also write a disassembly listing to this file");
 
     return {sub, [o]() {
-                isa::AsmOptions opt;
-                for (const std::string& d : o->defines) {
-                    std::pair<std::string, int64_t> def;
-                    try {
-                        def = isa::parse_define(d);
-                    } catch (const std::invalid_argument& e) {
-                        throw UserError(e.what());
-                    }
-                    if (opt.defines.count(def.first))
-                        throw UserError("-D " + def.first + " given more than once");
-                    opt.defines.insert(def);
-                }
+                check_output_file("--out", o->out, false);  // both before anything is written
+                check_output_file("--listing", o->listing, false);
+                isa::AsmOptions opt = asm_options(o->defines);
                 opt.source_map = !o->no_source_map;
-                isa::Program p;
-                try {
-                    p = isa::assemble_file(o->src, opt);
-                } catch (const isa::AsmError& e) {
-                    const auto& ds = e.diagnostics();
-                    if (ds.size() == 1 && ds[0].line == 0)  // the file itself is unreadable
-                        throw UserError(ds[0].message);
-                    // Compiler-style diagnostics, one per line, then the summary.
-                    for (const isa::Diagnostic& d : e.diagnostics()) std::cerr << d.str() << "\n";
-                    size_t n = 0;
-                    for (const isa::Diagnostic& d : e.diagnostics())
-                        n += d.message.rfind("too many errors", 0) != 0;
-                    throw UserError(o->src + " does not assemble (" + std::to_string(n) + " error" +
-                                    (n == 1 ? "" : "s") + "); nothing written");
-                }
+                const isa::Program p = assemble_or_report(o->src, opt, "nothing written");
                 try {
                     isa::save_program(p, o->out, !o->no_source_map);
                 } catch (const isa::FormatError& e) {
@@ -118,6 +127,7 @@ Subcommand register_disasm(CLI::App& app) {
     sub->add_flag("--no-comments", o->no_comments, "leave out the PC / source comments");
 
     return {sub, [o]() {
+                check_output_file("--out", o->out, false);
                 isa::Program p;
                 try {
                     p = isa::load_program(o->bin);

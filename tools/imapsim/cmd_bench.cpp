@@ -86,6 +86,7 @@ Subcommand register_bench(CLI::App& app) {
         ->capture_default_str();
     return {
         sub, [o]() {
+            check_output_file("--json", o->json, false);  // before the runs, not after them
             std::printf(
                 "imapsim bench: headline case (synthetic scene, ROI 128x128, D=64, "
                 "bidir, vote on, 256 PEs, 40 MHz), %d run(s) per model\n",

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -17,7 +16,6 @@ namespace imapsim {
 
 namespace g = imap::golden;
 namespace v = imap::vision;
-namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
@@ -117,16 +115,7 @@ Subcommand register_eval(CLI::App& app) {
             else
                 matchers = {m};
 
-            if (!o->json.empty()) {  // fail before the work, not after it
-                const fs::path jp(o->json);
-                const fs::path parent = jp.parent_path().empty() ? "." : jp.parent_path();
-                std::error_code ec;
-                if (fs::is_directory(jp, ec))
-                    throw UserError("--json '" + o->json + "' is a folder");
-                if (!fs::is_directory(parent, ec))
-                    throw UserError("--json '" + o->json + "': folder '" + parent.string() +
-                                    "' does not exist");
-            }
+            check_output_file("--json", o->json, false);  // fail before the work, not after it
 
             const std::vector<std::string> dirs =
                 o->all.empty() ? std::vector<std::string>{o->scene} : v::list_scene_dirs(o->all);

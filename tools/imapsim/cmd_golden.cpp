@@ -31,6 +31,7 @@ Subcommand register_golden(CLI::App& app) {
                 g::Roi roi;
                 bool has_roi = false;
                 const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
+                check_output_file("--out", o->out, true);
                 const cv::Mat L = v::load_grey8(o->left, "left image");
                 const cv::Mat R = v::load_grey8(o->right, "right image");
                 if (L.size() != R.size())

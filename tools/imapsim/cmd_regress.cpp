@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "child.hpp"
 #include "cli_common.hpp"
 #include "imap/vision/image_io.hpp"
 #include "model_runner.hpp"
@@ -237,39 +238,13 @@ struct Job {
     json rep;  // parsed report (null if none)
 };
 
-std::string shell_quote(const std::string& s) {
-    if (!s.empty() && s.find_first_of(" \t\n'\"\\$`*?;&|<>()") == std::string::npos) return s;
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string command_line(const std::vector<std::string>& argv) {
-    std::string s;
-    for (const auto& a : argv) s += (s.empty() ? "" : " ") + shell_quote(a);
-    return s;
-}
-
 void spawn(Job& j) {
     j.started = true;
     j.start = Clock::now();
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, j.log.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-    std::vector<char*> av;
-    for (auto& a : j.argv) av.push_back(a.data());
-    av.push_back(nullptr);
-    const int rc = posix_spawn(&j.pid, av[0], &fa, nullptr, av.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) {
-        j.pid = -1;
+    j.pid = spawn_logged(j.argv, j.log.string());
+    if (j.pid < 0) {
         j.finished = true;
         j.exit_code = -1;
-        std::ofstream(j.log, std::ios::app)
-            << "imapsim regress: posix_spawn failed: " << std::strerror(rc) << "\n";
     }
 }
 
@@ -570,6 +545,8 @@ Subcommand register_regress(CLI::App& app) {
                                 " in " + cases_file.string());
 
             const fs::path data = o->data.empty() ? default_data(exe_dir) : fs::path(o->data);
+            check_output_file("--junit", o->junit, false);  // before the suite, not after it
+            check_output_file("--json", o->json_out, false);
 
             // Jobs.
             std::vector<std::vector<std::string>> case_models(cases.size());

@@ -11,6 +11,7 @@
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
 #include "imap/vision/image_io.hpp"
+#include "imap/vision/score.hpp"
 #include "imap/vision/synth.hpp"
 #include "model_runner.hpp"
 
@@ -33,18 +34,6 @@ struct RunOptions {
     WaveFlags waves;
 };
 
-// Share of ROI pixels whose disparity differs from the ground truth by more
-// than one level (left frame, after fill; SPEC A.8 without masks).
-double bad1_percent(const g::DisparityMap& m, const cv::Mat& gt, const g::Roi& roi) {
-    size_t bad = 0;
-    for (int y = 0; y < m.height; ++y)
-        for (int x = 0; x < m.width; ++x) {
-            const int d = m.at(x, y);
-            const int t = gt.at<uint8_t>(roi.y0 + y, roi.x0 + x);
-            bad += (d > t ? d - t : t - d) > 1;
-        }
-    return 100.0 * static_cast<double>(bad) / static_cast<double>(m.data.size());
-}
 }  // namespace
 
 Subcommand register_run(CLI::App& app) {
@@ -71,6 +60,9 @@ Subcommand register_run(CLI::App& app) {
                 const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
                 const isa::MachineConfig cfg = parse_machine_flags(o->machine);
                 check_model_name(o->model);
+                check_output_file("--out", o->out, true);
+                check_output_file("--report", o->report, false);
+                check_output_file("--vcd", o->waves.vcd, false);
                 cv::Mat L, R, gt;
                 std::string source;
                 if (o->left.empty() != o->right.empty())
@@ -98,9 +90,10 @@ Subcommand register_run(CLI::App& app) {
                     }
                 }
                 if (L.size() != R.size())
-                    throw UserError("left and right images differ in size: " +
-                                    std::to_string(L.cols) + "x" + std::to_string(L.rows) + " vs " +
-                                    std::to_string(R.cols) + "x" + std::to_string(R.rows));
+                    throw UserError("left and right images differ in size: " + o->left + " is " +
+                                    std::to_string(L.cols) + "x" + std::to_string(L.rows) + ", " +
+                                    o->right + " is " + std::to_string(R.cols) + "x" +
+                                    std::to_string(R.rows));
                 if (!has_roi) roi = {0, 0, L.cols, L.rows};
                 try {
                     g::validate(p, roi, L.cols, L.rows);
@@ -134,7 +127,7 @@ Subcommand register_run(CLI::App& app) {
                     pl.frame = g::Frame::Left;
                     const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
                     std::printf("  golden bad-1 vs ground truth (left frame, filled): %.2f%%\n",
-                                bad1_percent(ml, gt, roi));
+                                v::bad_percent_roi(ml, gt, roi));
                 }
                 if (!o->out.empty()) {
                     cv::Mat out(r.map.height, r.map.width, CV_8UC1,

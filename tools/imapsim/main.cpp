@@ -18,10 +18,16 @@ int main(int argc, char** argv) {
 #ifdef IMAPSIM_HAVE_ISA
     subs.push_back(register_asm(app));
     subs.push_back(register_disasm(app));
+    subs.push_back(register_exec(app));
 #endif
 #ifdef IMAPSIM_HAVE_REGRESS
     subs.push_back(register_regress(app));
 #endif
+#ifdef IMAPSIM_HAVE_STREAM
+    subs.push_back(register_stream(app));
+#endif
+    subs.push_back(register_sweep(app));
+    subs.push_back(register_table1(app));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -60,4 +60,17 @@ BadScores score_bad(const cv::Mat& disp, double disp_scale, const Scene& sc, dou
     return {pct(bad[0], total[0]), pct(bad[1], total[1]), pct(bad[2], total[2])};
 }
 
+double bad_percent_roi(const golden::DisparityMap& m, const cv::Mat& gt, const golden::Roi& roi,
+                       int delta) {
+    if (m.data.empty()) return 0;
+    size_t bad = 0;
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            const int d = m.at(x, y);
+            const int t = gt.at<uint8_t>(roi.y0 + y, roi.x0 + x);
+            bad += (d > t ? d - t : t - d) > delta;
+        }
+    return 100.0 * static_cast<double>(bad) / static_cast<double>(m.data.size());
+}
+
 }  // namespace imap::vision

@@ -4,34 +4,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "synth_internal.hpp"
+
 namespace imap::vision {
 
+namespace detail {
+
 namespace {
-
-// splitmix64: tiny, well-mixed, and identical everywhere (no std::
-// distributions, whose output differs between standard libraries).
-class Rng {
-  public:
-    explicit Rng(uint64_t seed) : s_(seed) {}
-    uint64_t next() {
-        uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    // Uniform integer in lo..hi (inclusive); lo <= hi.
-    int range(int lo, int hi) {
-        const uint64_t n = static_cast<uint64_t>(static_cast<int64_t>(hi) - lo + 1);
-        return lo + static_cast<int>(((next() >> 32) * n) >> 32);
-    }
-
-  private:
-    uint64_t s_;
-};
-
-int clamp255(int v) {
-    return v < 0 ? 0 : (v > 255 ? 255 : v);
-}
 
 // Value noise: random values on a grid of `cell` pixels, bilinearly
 // interpolated (integer), 0..255.
@@ -57,8 +36,8 @@ std::vector<int> value_noise(Rng& rng, int w, int h, int cell) {
     return out;
 }
 
-// Texture of one surface (w x h, surface coordinates): several octaves of
-// value noise plus small sharp blobs, mapped to lo..lo+span.
+}  // namespace
+
 cv::Mat make_texture(Rng& rng, int w, int h, int lo, int span) {
     const std::vector<int> n16 = value_noise(rng, w, h, 16);
     const std::vector<int> n6 = value_noise(rng, w, h, 6);
@@ -91,25 +70,44 @@ cv::Mat make_texture(Rng& rng, int w, int h, int lo, int span) {
     return tex;
 }
 
-struct Object {
-    int x0, y0, w, h;  // bounding box in the LEFT view
-    int d;             // disparity
-    bool disc;         // ellipse inscribed in the box, else the box itself
-    cv::Mat tex;       // w x h texture in box coordinates
-    bool contains(int x, int y) const {
-        if (x < x0 || y < y0 || x >= x0 + w || y >= y0 + h) return false;
-        if (!disc) return true;
-        // (2x - (2x0 + w - 1))^2 / w^2 + (2y - (2y0 + h - 1))^2 / h^2 <= 1
-        const int64_t ex = 2 * (x - x0) - (w - 1), ey = 2 * (y - y0) - (h - 1);
-        const int64_t W2 = static_cast<int64_t>(w) * w, H2 = static_cast<int64_t>(h) * h;
-        return ex * ex * H2 + ey * ey * W2 <= W2 * H2;
-    }
-    uint8_t colour(int x, int y) const { return tex.at<uint8_t>(y - y0, x - x0); }
-};
+int render_views(const cv::Mat& bg, const std::vector<Object>& objs, Rng& noise, cv::Mat* left,
+                 cv::Mat* right, cv::Mat* gt) {
+    const int W = bg.cols, H = bg.rows;
+    left->create(H, W, CV_8UC1);
+    right->create(H, W, CV_8UC1);
+    gt->create(H, W, CV_8UC1);
+    int max_disp = 0;
+    for (int y = 0; y < H; ++y) {
+        uint8_t* L = left->ptr<uint8_t>(y);
+        uint8_t* R = right->ptr<uint8_t>(y);
+        uint8_t* G = gt->ptr<uint8_t>(y);
+        const uint8_t* B = bg.ptr<uint8_t>(y);
+        for (int x = 0; x < W; ++x) {
+            // Left view: the nearest surface at left pixel x.
+            int top = -1;
+            for (int k = 0; k < static_cast<int>(objs.size()); ++k)
+                if (objs[k].contains(x, y)) top = k;
+            const int lv = top < 0 ? B[x] : objs[top].colour(x, y);
+            L[x] = static_cast<uint8_t>(clamp255(lv + noise.range(-kSynthNoise, kSynthNoise)));
+            G[x] = static_cast<uint8_t>(top < 0 ? 0 : objs[top].d);
+            max_disp = std::max(max_disp, static_cast<int>(G[x]));
 
-}  // namespace
+            // Right view: right pixel x sees surface point left x + d of the
+            // nearest surface whose left-view position x + d it covers.
+            int rtop = -1;
+            for (int k = 0; k < static_cast<int>(objs.size()); ++k)
+                if (x + objs[k].d < W && objs[k].contains(x + objs[k].d, y)) rtop = k;
+            const int rv = rtop < 0 ? B[x] : objs[rtop].colour(x + objs[rtop].d, y);
+            R[x] = static_cast<uint8_t>(clamp255(rv + noise.range(-kSynthNoise, kSynthNoise)));
+        }
+    }
+    return max_disp;
+}
+
+}  // namespace detail
 
 SynthScene make_synth_scene(uint64_t seed, int width, int height) {
+    using namespace detail;
     if (width < 1 || height < 1 || width > 65536 || height > 65536)
         throw std::invalid_argument("make_synth_scene: size " + std::to_string(width) + "x" +
                                     std::to_string(height) + " outside 1..65536");
@@ -148,34 +146,7 @@ SynthScene make_synth_scene(uint64_t seed, int width, int height) {
     }
 
     SynthScene sc;
-    sc.left.create(H, W, CV_8UC1);
-    sc.right.create(H, W, CV_8UC1);
-    sc.gt.create(H, W, CV_8UC1);
-    sc.max_disp = 0;
-    for (int y = 0; y < H; ++y) {
-        uint8_t* L = sc.left.ptr<uint8_t>(y);
-        uint8_t* R = sc.right.ptr<uint8_t>(y);
-        uint8_t* G = sc.gt.ptr<uint8_t>(y);
-        const uint8_t* B = bg.ptr<uint8_t>(y);
-        for (int x = 0; x < W; ++x) {
-            // Left view: the nearest surface at left pixel x.
-            int top = -1;
-            for (int k = 0; k < static_cast<int>(objs.size()); ++k)
-                if (objs[k].contains(x, y)) top = k;
-            const int lv = top < 0 ? B[x] : objs[top].colour(x, y);
-            L[x] = static_cast<uint8_t>(clamp255(lv + rng.range(-kSynthNoise, kSynthNoise)));
-            G[x] = static_cast<uint8_t>(top < 0 ? 0 : objs[top].d);
-            sc.max_disp = std::max(sc.max_disp, static_cast<int>(G[x]));
-
-            // Right view: right pixel x sees surface point left x + d of the
-            // nearest surface whose left-view position x + d it covers.
-            int rtop = -1;
-            for (int k = 0; k < static_cast<int>(objs.size()); ++k)
-                if (x + objs[k].d < W && objs[k].contains(x + objs[k].d, y)) rtop = k;
-            const int rv = rtop < 0 ? B[x] : objs[rtop].colour(x + objs[rtop].d, y);
-            R[x] = static_cast<uint8_t>(clamp255(rv + rng.range(-kSynthNoise, kSynthNoise)));
-        }
-    }
+    sc.max_disp = render_views(bg, objs, rng, &sc.left, &sc.right, &sc.gt);
     return sc;
 }
 

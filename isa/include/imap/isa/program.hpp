@@ -27,7 +27,8 @@ struct Program {
     std::vector<std::string> files;           // source files of the source map
     std::vector<SourceLoc> source_map;        // PC -> location; empty or code.size()
 
-    // "file:line" of a PC, or "" when unknown.
+    // "file:line" of a PC, or "" when unknown (control characters in the
+    // file name shown as '?', so that the text stays on one line).
     std::string location(uint32_t pc) const;
     // Phase name, or "#id" when the id has no name.
     std::string phase_name(uint32_t id) const;

@@ -185,13 +185,21 @@ class VideoSource : public sc_core::sc_module {
     const Image& input(int port) const;
     const Image& output(int port) const;
     const VideoStats& stats() const { return stats_; }
+    // Routes line transfers to a streamed video path (the streaming
+    // testbench, testbench/) instead of the host images; nullptr = host
+    // images again. Its read_line runs in the CP's thread inside b_transport
+    // and may wait() until line y has arrived (the CP stalls); exceptions
+    // become the transaction's VideoLine::error. Debug transactions are
+    // refused while a stream is attached.
+    void attach_stream(isa::VideoPort* s) { stream_ = s; }
 
   private:
     void b_transport(::tlm::tlm_generic_payload& tr, sc_core::sc_time& delay);
     unsigned transport_dbg(::tlm::tlm_generic_payload& tr);
-    bool transfer(::tlm::tlm_generic_payload& tr);
+    bool transfer(::tlm::tlm_generic_payload& tr, bool debug);
 
     isa::ImageVideoPort images_;
+    isa::VideoPort* stream_ = nullptr;
     VideoStats stats_;
 };
 

@@ -22,6 +22,12 @@ struct TlmConfig {
     // processes. Range: > 0 and at most 1 s.
     double quantum_ns = 10000.0;
 
+    // Hosted CP: the CP does not start the program by itself but waits for
+    // Cp::start() from a testbench, runs it to halt, notifies
+    // Cp::done_event() and waits again (one program run per frame). A
+    // machine fault ends that run only (Cp::fault()), not the simulation.
+    bool hosted = false;
+
     // Attached to the machine before sc_start by run_tlm (waves, profiling);
     // nullptr = none (costs nothing). Not a model parameter (not listed).
     isa::Observer* observer = nullptr;

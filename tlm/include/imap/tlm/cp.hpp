@@ -44,9 +44,21 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     const sc_core::sc_time& period() const { return period_; }
     const TlmConfig& tlm_config() const { return tcfg_; }
 
-    // The exception that ended the run (an isa::Fault, ...), or null.
+    // The exception that ended the (last) run (an isa::Fault, ...), or null.
     std::exception_ptr fault() const { return fault_; }
     bool finished() const { return finished_; }
+
+    // Hosted mode (TlmConfig::hosted): resets the machine (Machine::reset:
+    // state, memories, counters; program and param block kept) and starts
+    // one run of the program; done_event() is notified when it halts or
+    // faults. std::logic_error if not hosted or still busy.
+    void start();
+    bool busy() const { return start_pending_ || running_; }
+    const sc_core::sc_event& done_event() const { return done_ev_; }
+    // Modeled time the CP spent waiting for video lines that had not yet
+    // arrived (streamed input), in the current / last run. The machine's
+    // cycle count does not include it [A: the CP stalls, the array idles].
+    sc_core::sc_time video_stall() const { return stall_; }
     uint64_t syncs() const { return syncs_; }    // quantum keeper synchronisations
     uint64_t chunks() const { return chunks_; }  // Machine::run calls
     bool used_dmi() const { return dmi_ptr_ != nullptr; }
@@ -58,6 +70,8 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     };
 
     void thread();
+    // Runs the loaded program to halt (or fault) under the quantum keeper.
+    void run_program();
     void acquire_dmi();
     void invalidate_dmi(sc_dt::uint64 start, sc_dt::uint64 end);
     // Local time = cycles executed since the last synchronisation.
@@ -87,6 +101,9 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     VideoLine ext_;
     std::exception_ptr fault_;
     bool finished_ = false;
+    bool start_pending_ = false, running_ = false;
+    sc_core::sc_event start_ev_, done_ev_;
+    sc_core::sc_time stall_;
     uint64_t syncs_ = 0, chunks_ = 0;
 };
 

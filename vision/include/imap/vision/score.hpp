@@ -3,6 +3,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "imap/golden/stereo.hpp"
 #include "imap/vision/scene.hpp"
 
 namespace imap::vision {
@@ -20,5 +21,11 @@ struct BadScores {
 // zeros are scored like any other value: the Middlebury masks already leave
 // out pixels of unknown disparity.
 BadScores score_bad(const cv::Mat& disp, double disp_scale, const Scene& sc, double delta = 1.0);
+
+// Share (0..100) of the pixels of an ROI-sized LEFT-frame map whose disparity
+// differs from the ground truth by more than `delta` levels; gt is the
+// whole-image CV_8UC1 ground truth (gt_scale 1), sampled at the ROI.
+double bad_percent_roi(const golden::DisparityMap& m, const cv::Mat& gt, const golden::Roi& roi,
+                       int delta = 1);
 
 }  // namespace imap::vision

@@ -1,0 +1,409 @@
+// imapsim sweep and imapsim table1 from the outside: value lists and ranges,
+// does-not-fit rows, CSV / JSON / plot outputs, cycles against direct
+// `imapsim run` calls of the same points, error rows, and Ctrl-C.
+#define BOOST_TEST_MODULE cli_sweep
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <boost/test/unit_test.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_test_util.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using clitest::Result;
+using clitest::run;
+
+fs::path tmpdir() {
+    fs::path d = fs::temp_directory_path() / ("imapsim-cli-sweep-" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+// Removes the test's temporary folder at the end.
+struct Cleanup {
+    ~Cleanup() {
+        std::error_code ec;
+        fs::remove_all(tmpdir(), ec);
+    }
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A small RFC 4180 reader: rows of fields, quoted fields may hold commas.
+using Csv = std::vector<std::vector<std::string>>;
+Csv parse_csv(const std::string& text) {
+    Csv rows;
+    std::vector<std::string> row;
+    std::string f;
+    bool q = false, any = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (q) {
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+                f += '"';
+                ++i;
+            } else if (c == '"') {
+                q = false;
+            } else {
+                f += c;
+            }
+        } else if (c == '"') {
+            q = true;
+            any = true;
+        } else if (c == ',') {
+            row.push_back(f);
+            f.clear();
+            any = true;
+        } else if (c == '\n') {
+            row.push_back(f);
+            rows.push_back(row);
+            row.clear();
+            f.clear();
+            any = false;
+        } else {
+            f += c;
+            any = true;
+        }
+    }
+    if (any) {
+        row.push_back(f);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+// Rows as maps column -> value (header from the first row).
+std::vector<std::map<std::string, std::string>> records(const Csv& csv) {
+    std::vector<std::map<std::string, std::string>> out;
+    BOOST_REQUIRE(!csv.empty());
+    for (size_t r = 1; r < csv.size(); ++r) {
+        BOOST_REQUIRE_EQUAL(csv[r].size(), csv[0].size());
+        std::map<std::string, std::string> m;
+        for (size_t c = 0; c < csv[0].size(); ++c) m[csv[0][c]] = csv[r][c];
+        out.push_back(m);
+    }
+    return out;
+}
+
+// Cycles of a direct `imapsim run` of one synthetic point (WxH scene, whole
+// image as ROI), read from its JSON report.
+uint64_t direct_cycles(const std::string& args, const fs::path& report) {
+    const Result r = run("run --report " + report.string() + " " + args);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    std::ifstream in(report);
+    const json j = json::parse(in);
+    BOOST_REQUIRE(j.at("bit_exact").get<bool>());
+    return j.at("cycles").get<uint64_t>();
+}
+
+}  // namespace
+
+BOOST_TEST_GLOBAL_FIXTURE(Cleanup);
+
+BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "small.csv", js = d / "small.json", png = d / "small.png";
+    const Result r = run("sweep --roi-size 32x16 --D 8 --pes 8,16 --mem-bytes 1024,60 -j 2 --csv " +
+                         csv.string() + " --json " + js.string() + " --plot " + png.string() +
+                         " --plot-size 640x480");
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 4u);  // 2 PE counts x 2 memory sizes
+    const auto head = parse_csv(slurp(csv)).front();
+    BOOST_TEST(head[0] == "pes");
+    BOOST_TEST(head[1] == "mem_bytes");
+    for (const char* c : {"cycles", "modeled_ms", "fps", "status", "message"}) {
+        BOOST_TEST_INFO("column " << c);
+        BOOST_TEST((std::find(head.begin(), head.end(), c) != head.end()));
+    }
+    BOOST_TEST((std::find(head.begin(), head.end(), "phase_forward") != head.end()));
+
+    // A direct run with 60 bytes of local memory is refused by the planner:
+    // the sweep reports that point as a row with the same message.
+    const Result refused = run("run --size 32x16 --roi 0,0,32,16 --D 8 --pes 8 --mem-bytes 60");
+    BOOST_TEST_INFO(refused.out);
+    BOOST_TEST(refused.code == 2);
+    BOOST_TEST(refused.out.find("does not fit") != std::string::npos);
+
+    std::set<std::string> seen;
+    for (const auto& row : rows) {
+        seen.insert(row.at("pes") + "/" + row.at("mem_bytes"));
+        if (row.at("mem_bytes") == "60") {
+            BOOST_TEST(row.at("status") == "does-not-fit");
+            BOOST_TEST(row.at("message").find("does not fit: needs") != std::string::npos);
+            BOOST_TEST(row.at("message").find("have 60") != std::string::npos);
+            BOOST_TEST(row.at("cycles").empty());
+        } else {
+            BOOST_TEST(row.at("status") == "ok");
+            BOOST_TEST(row.at("bit_exact") == "yes");
+            // modeled time is cycles at the default 40 MHz
+            const double cyc = std::stod(row.at("cycles"));
+            BOOST_TEST(std::stod(row.at("modeled_ms")) == cyc / 40e3,
+                       boost::test_tools::tolerance(1e-6));
+            // the phases add up to the total
+            uint64_t sum = 0;
+            for (const auto& [k, v] : row)
+                if (k.rfind("phase_", 0) == 0 && !v.empty()) sum += std::stoull(v);
+            BOOST_TEST(sum == std::stoull(row.at("cycles")));
+        }
+    }
+    BOOST_TEST((seen == std::set<std::string>{"8/1024", "8/60", "16/1024", "16/60"}));
+
+    // Independent check: cycles of the 16-PE point equal a direct run's.
+    const uint64_t want = direct_cycles(
+        "--size 32x16 --roi 0,0,32,16 --D 8 --pes 16 --mem-bytes 1024", d / "r16.json");
+    for (const auto& row : rows)
+        if (row.at("pes") == "16" && row.at("mem_bytes") == "1024")
+            BOOST_TEST(std::stoull(row.at("cycles")) == want);
+
+    // JSON: same rows plus the fixed parameters.
+    std::ifstream in(js);
+    const json j = json::parse(in);
+    BOOST_TEST(j.at("rows").size() == 4u);
+    BOOST_TEST(j.at("interrupted").get<bool>() == false);
+    BOOST_TEST(j.at("fixed").at("algorithm").at("D") == 8);
+    BOOST_TEST(j.at("fixed").at("roi_size") == "32x16");
+    BOOST_TEST(j.at("swept").size() == 2u);
+
+    // Plot: a readable image of the requested size.
+    const cv::Mat img = cv::imread(png.string(), cv::IMREAD_COLOR);
+    BOOST_REQUIRE(!img.empty());
+    BOOST_TEST(img.cols == 640);
+    BOOST_TEST(img.rows == 480);
+    // not blank: some pixels differ from the white background
+    const cv::Mat ink = img.reshape(1) != 255;
+    BOOST_TEST(cv::countNonZero(ink) > 1000);
+}
+
+BOOST_AUTO_TEST_CASE(range_syntax) {
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "ranges.csv";
+    // --dry-run plans every point without running it.
+    const Result r =
+        run("sweep --dry-run --roi-size 32x16 --pes 8..64*2 --D 4..6 --clock-mhz "
+            "10..40:10 --csv " +
+            csv.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 4u * 3u * 4u);
+    std::set<std::string> pes, D, clk;
+    for (const auto& row : rows) {
+        pes.insert(row.at("pes"));
+        D.insert(row.at("D"));
+        clk.insert(row.at("clock_mhz"));
+        BOOST_TEST(row.at("status") == "fits-not-run");
+    }
+    BOOST_TEST((pes == std::set<std::string>{"8", "16", "32", "64"}));
+    BOOST_TEST((D == std::set<std::string>{"4", "5", "6"}));
+    BOOST_TEST((clk == std::set<std::string>{"10", "20", "30", "40"}));
+
+    // Bad syntax: exit 2, the flag and the accepted syntax named, nothing written.
+    const std::pair<const char*, const char*> bad[] = {{"--pes 8..", "--pes"},
+                                                       {"--pes 8..64*1", "--pes"},
+                                                       {"--pes 64..8", "--pes"},
+                                                       {"--D 4,,8", "--D"},
+                                                       {"--roi-size 32y16", "--roi-size"},
+                                                       {"--clock-mhz abc", "--clock-mhz"},
+                                                       {"--set ring_hop=1..x", "--set ring_hop"},
+                                                       {"--mode single,both", "--mode"},
+                                                       {"--set nosuch=1,2", "nosuch"}};
+    for (const auto& [args, flag] : bad) {
+        const fs::path out = d / "bad.csv";
+        const Result b = run(std::string("sweep --dry-run ") + args + " --csv " + out.string());
+        BOOST_TEST_CONTEXT(args << "\n" << b.out) {
+            BOOST_TEST(b.code == 2);
+            BOOST_TEST(b.out.find(flag) != std::string::npos);
+            BOOST_TEST(b.out.find("imapsim: error:") != std::string::npos);
+            BOOST_TEST(!fs::exists(out));
+        }
+    }
+    const Result syn = run("sweep --dry-run --pes 8..");
+    BOOST_TEST(syn.out.find("A..B*F") != std::string::npos);
+
+    // More than 10000 points are refused.
+    const Result big = run("sweep --dry-run --pes 2..200 --D 1..100");
+    BOOST_TEST_INFO(big.out);
+    BOOST_TEST(big.code == 2);
+    BOOST_TEST(big.out.find("19900 points") != std::string::npos);
+    BOOST_TEST(big.out.find("10000") != std::string::npos);
+
+    // --plot needs a swept axis; --x must name one.
+    BOOST_TEST(
+        run("sweep --dry-run --D 8 --roi-size 32x16 --plot " + (d / "p.png").string()).code == 2);
+    const Result x = run("sweep --dry-run --pes 8,16 --roi-size 32x16 --D 8 --x D");
+    BOOST_TEST(x.code == 2);
+    BOOST_TEST(x.out.find("--x") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(failing_point_is_an_error_row_exit_5) {
+    // A watchdog of 1000 cycles makes the run fault (exit 3 of the child);
+    // the sweep goes on with the other point and exits 5. (--model core: the
+    // fault is thrown out of the bare executor, not out of a SystemC thread.)
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "err.csv";
+    const Result r = run(
+        "sweep --model core --roi-size 32x16 --D 8 --set watchdog_cycles=1000,2000000000 --csv " +
+        csv.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 5);
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 2u);
+    BOOST_TEST(rows[0].at("status") == "error");
+    BOOST_TEST(rows[0].at("message").find("fault") != std::string::npos);
+    BOOST_TEST(rows[1].at("status") == "ok");
+    // The failed point's log is kept and named.
+    const std::string key = "kept in ";
+    const size_t k = r.out.find(key);
+    BOOST_REQUIRE(k != std::string::npos);
+    const fs::path logs = r.out.substr(k + key.size(), r.out.find('\n', k) - k - key.size());
+    BOOST_TEST(fs::is_directory(logs));
+    bool fault_logged = false;
+    for (const auto& e : fs::directory_iterator(logs))
+        if (e.path().extension() == ".log")
+            fault_logged |= slurp(e.path()).find("watchdog") != std::string::npos;
+    BOOST_TEST(fault_logged);
+    std::error_code ec;
+    fs::remove_all(logs, ec);
+}
+
+BOOST_AUTO_TEST_CASE(table1_grid) {
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "t1.csv";
+    const Result r = run("table1 -j 2 --csv " + csv.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    const Csv c = parse_csv(slurp(csv));
+    BOOST_REQUIRE(!c.empty());
+    BOOST_TEST((c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles"}));
+    // The paper's grid: widths 32/64/128, D 16/32/64/128 with D <= width.
+    std::set<std::pair<int, int>> want;
+    for (int w : {32, 64, 128})
+        for (int dd : {16, 32, 64, 128})
+            if (dd <= w) want.insert({w, dd});
+    BOOST_REQUIRE_EQUAL(want.size(), 9u);
+    std::set<std::pair<int, int>> got;
+    uint64_t headline = 0;
+    for (size_t i = 1; i < c.size(); ++i) {
+        BOOST_REQUIRE_EQUAL(c[i].size(), 4u);
+        const int w = std::stoi(c[i][0]), dd = std::stoi(c[i][1]);
+        got.insert({w, dd});
+        const uint64_t cyc = std::stoull(c[i][3]);
+        BOOST_TEST(std::stod(c[i][2]) == cyc / 40e3, boost::test_tools::tolerance(1e-6));
+        if (w == 128 && dd == 64) headline = cyc;
+    }
+    BOOST_TEST(c.size() == 10u);
+    BOOST_TEST((got == want));
+    // The headline cell equals a direct run of the same point.
+    BOOST_TEST(headline ==
+               direct_cycles("--size 128x128 --roi 0,0,128,128 --D 64 --pes 256 --clock-mhz 40",
+                             d / "headline.json"));
+    // The stdout table shows the paper's 85 ms beside the headline cell.
+    std::istringstream lines(r.out);
+    std::string line;
+    bool shown = false;
+    while (std::getline(lines, line))
+        if (line.find("[paper 85]") != std::string::npos && line.find("      128") == 0)
+            shown = true;
+    BOOST_TEST(shown);
+}
+
+BOOST_AUTO_TEST_CASE(ctrl_c_writes_partial_results) {
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "int.csv", js = d / "int.json", out = d / "int.out";
+    // 293 points of ~0.1 s each, one at a time: far longer than the test waits.
+    std::vector<std::string> args = {IMAPSIM_EXE, "sweep",      "--roi-size", "32x16",    "--D",
+                                     "8",         "--pes",      "8..300",     "-j",       "1",
+                                     "--csv",     csv.string(), "--json",     js.string()};
+    std::vector<char*> av;
+    for (auto& a : args) av.push_back(a.data());
+    av.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+    posix_spawnattr_t at;
+    posix_spawnattr_init(&at);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);  // own group, like a terminal job
+    posix_spawnattr_setpgroup(&at, 0);
+    pid_t pid = -1;
+    BOOST_REQUIRE_EQUAL(posix_spawn(&pid, IMAPSIM_EXE, &fa, &at, av.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&at);
+
+    // Wait until a few points have finished (at least ~1 s), then Ctrl-C the
+    // whole group (the running child gets it too).
+    const auto t0 = std::chrono::steady_clock::now();
+    auto finished_rows = [&]() {
+        const std::string s = slurp(out);
+        size_t n = 0;
+        for (size_t p = s.find("ok, bit-exact"); p != std::string::npos;
+             p = s.find("ok, bit-exact", p + 1))
+            ++n;
+        return n;
+    };
+    while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+        if (finished_rows() >= 3 && std::chrono::steady_clock::now() - t0 > std::chrono::seconds(1))
+            break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    BOOST_REQUIRE(::kill(-pid, SIGINT) == 0);
+    int st = 0;
+    BOOST_REQUIRE_EQUAL(::waitpid(pid, &st, 0), pid);
+    BOOST_TEST_INFO(slurp(out));
+    BOOST_REQUIRE(WIFEXITED(st));
+    BOOST_TEST(WEXITSTATUS(st) == 130);
+
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE(rows.size() >= 2u);
+    // finished points, then one row saying the sweep was interrupted
+    const auto& last = rows.back();
+    BOOST_TEST(last.at("status") == "sweep-interrupted");
+    BOOST_TEST(last.at("message").find("did not run") != std::string::npos);
+    size_t ok = 0;
+    for (size_t i = 0; i + 1 < rows.size(); ++i) {
+        const std::string& s = rows[i].at("status");
+        BOOST_TEST_INFO("status " << s);
+        BOOST_TEST((s == "ok" || s == "interrupted"));
+        ok += s == "ok";
+    }
+    BOOST_TEST(ok >= 3u);
+    BOOST_TEST(rows.size() - 1 < 293u);
+
+    std::ifstream in(js);
+    const json j = json::parse(in);
+    BOOST_TEST(j.at("interrupted").get<bool>());
+    BOOST_TEST(j.at("points_total").get<size_t>() == 293u);
+    BOOST_TEST(j.at("not_run").get<size_t>() > 0u);
+    BOOST_TEST(j.at("rows").size() == rows.size() - 1);
+    BOOST_TEST(j.at("points_finished").get<size_t>() + j.at("not_run").get<size_t>() == 293u);
+}

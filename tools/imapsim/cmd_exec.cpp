@@ -1,0 +1,307 @@
+// imapsim exec: runs a user's program (IMAPFW01 file, or assembler source
+// ending in .s / .asm) on a model of the machine, with optional video inputs
+// and an output image on port 0 (docs/exec.md).
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "asm_flags.hpp"
+#include "cli_common.hpp"
+#include "imap/firmware/run.hpp"
+#include "imap/isa/assembler.hpp"
+#include "imap/isa/machine.hpp"
+#include "imap/isa/program.hpp"
+#include "imap/vision/image_io.hpp"
+#include "model_runner.hpp"
+#ifdef IMAPSIM_HAVE_TLM
+#include "imap/tlm/system.hpp"
+#endif
+
+namespace imapsim {
+
+namespace isa = imap::isa;
+namespace v = imap::vision;
+namespace fw = imap::firmware;
+
+namespace {
+
+struct ExecOptions {
+    std::string program, left, right, out_left, report;
+    std::string model = kDefaultModel;
+    std::vector<std::string> params, defines;
+    MachineFlags machine;
+};
+
+// What a run of the program produced, whatever the model.
+struct ExecResult {
+    uint64_t cycles = 0;
+    double modeled_ms = 0, wall_s = 0;
+    std::vector<uint64_t> phase_cycles;
+    isa::Stats stats;
+    std::array<uint32_t, isa::kCpRegs> cp{};
+    isa::ImageVideoPort::Image out;  // output port 0
+};
+
+bool is_source(const std::string& path) {
+    std::string ext;
+    const size_t dot = path.find_last_of('.');
+    if (dot != std::string::npos && path.find('/', dot) == std::string::npos)
+        ext = path.substr(dot);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".s" || ext == ".asm";
+}
+
+// --param INDEX=VALUE: INDEX a param-block word, VALUE a 32-bit word (signed
+// or unsigned).
+std::vector<std::pair<int, uint32_t>> parse_params(const std::vector<std::string>& items) {
+    std::map<int, uint32_t> words;
+    for (const std::string& s : items) {
+        const size_t eq = s.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
+            throw UserError("invalid value '" + s +
+                            "' for --param: expected INDEX=VALUE (INDEX 0.." +
+                            std::to_string(isa::kParamWords - 1) + ")");
+        const int i = static_cast<int>(
+            parse_int_flag("--param " + s + " (index)", s.substr(0, eq), 0, isa::kParamWords - 1));
+        const long long val = parse_int_flag("--param " + s + " (value)", s.substr(eq + 1),
+                                             -2147483648LL, 4294967295LL);
+        if (!words.emplace(i, static_cast<uint32_t>(val)).second)
+            throw UserError("--param " + std::to_string(i) + " given more than once");
+    }
+    return {words.begin(), words.end()};
+}
+
+isa::Program read_program(const ExecOptions& o) {
+    if (!is_source(o.program)) {
+        if (!o.defines.empty())
+            throw UserError("-D applies to assembler sources (.s, .asm); '" + o.program +
+                            "' is read as a program file (IMAPFW01)");
+        try {
+            return isa::load_program(o.program);
+        } catch (const isa::FormatError& e) {
+            throw UserError(e.what());
+        }
+    }
+    return assemble_or_report(o.program, asm_options(o.defines), "nothing run");
+}
+
+isa::ImageVideoPort::Image read_input(const std::string& path, const char* what) {
+    if (path.empty()) return {};
+    const cv::Mat m = v::load_grey8(path, what);
+    return fw::to_video_image(v::view_of(m));
+}
+
+// `m` has the program loaded.
+ExecResult run_core(isa::Machine& m, const std::vector<std::pair<int, uint32_t>>& params,
+                    const isa::ImageVideoPort::Image& left, const isa::ImageVideoPort::Image& right,
+                    int out_w, int out_h) {
+    const isa::MachineConfig& cfg = m.config();
+    for (const auto& [i, val] : params) m.set_param(i, val);
+    isa::ImageVideoPort video;
+    video.input[0] = left;
+    video.input[1] = right;
+    video.make_output(0, out_w, out_h);
+    video.make_output(1, out_w, out_h);
+    m.set_video(&video);
+    const auto t0 = std::chrono::steady_clock::now();
+    m.run();
+    ExecResult r;
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.cycles = m.cycles();
+    r.modeled_ms = cfg.seconds(r.cycles) * 1e3;
+    r.phase_cycles = m.phase_cycles();
+    r.stats = m.stats();
+    for (int i = 0; i < isa::kCpRegs; ++i) r.cp[static_cast<size_t>(i)] = m.cp(i);
+    r.out = video.output[0];
+    return r;
+}
+
+#ifdef IMAPSIM_HAVE_TLM
+ExecResult run_tlm_model(const isa::MachineConfig& cfg, const isa::Program& prog,
+                         const std::vector<std::pair<int, uint32_t>>& params,
+                         const isa::ImageVideoPort::Image& left,
+                         const isa::ImageVideoPort::Image& right, int out_w, int out_h) {
+    imap::tlm::OutputImages out;
+    const imap::tlm::TlmRunResult tr =
+        imap::tlm::run_tlm(cfg, prog, params, left, right, out_w, out_h, &out);
+    ExecResult r;
+    r.cycles = tr.cycles;
+    r.modeled_ms = tr.modeled_ms;
+    r.wall_s = tr.wall_s;
+    r.phase_cycles = tr.phase_cycles;
+    r.stats = tr.stats;
+    if (tr.machine)
+        for (int i = 0; i < isa::kCpRegs; ++i) r.cp[static_cast<size_t>(i)] = tr.machine->cp(i);
+    r.out = out.image[0];
+    return r;
+}
+#endif
+
+std::string exec_model_names() {
+#ifdef IMAPSIM_HAVE_TLM
+    return "tlm (SystemC TLM-2.0) or core (the bare instruction-set executor)";
+#else
+    return "core (the bare instruction-set executor)";
+#endif
+}
+
+}  // namespace
+
+Subcommand register_exec(CLI::App& app) {
+    auto o = std::make_shared<ExecOptions>();
+    CLI::App* sub = app.add_subcommand(
+        "exec",
+        "Run your own program (IMAPFW01 file, or assembler source .s / .asm) on a model of the "
+        "machine (docs/exec.md)");
+    sub->add_option("PROGRAM", o->program,
+                    "program file (IMAPFW01), or assembler source if the name ends in .s or .asm")
+        ->required();
+    sub->add_option("--model", o->model, "model to run: " + exec_model_names())
+        ->capture_default_str();
+    sub->add_option("--left", o->left, "image on video input port 0 (optional)");
+    sub->add_option("--right", o->right, "image on video input port 1 (optional)");
+    sub->add_option("--param", o->params,
+                    "param-block word before the run, INDEX=VALUE (INDEX 0..255, VALUE a 32-bit "
+                    "integer); repeatable");
+    sub->add_option("-D,--define", o->defines,
+                    "assembler constant NAME=VALUE (or NAME, = 1), sources only; repeatable")
+        ->allow_extra_args(false);
+    sub->add_option("--out-left", o->out_left,
+                    "write video output port 0 (the size of the input images) here");
+    sub->add_option("--report", o->report, "write a JSON report here");
+    add_machine_flags(sub, o->machine);
+
+    return {
+        sub, [o]() {
+            // Everything is checked before the run: a bad flag never costs a run.
+            const isa::MachineConfig cfg = parse_machine_flags(o->machine);
+            if (o->model != "core"
+#ifdef IMAPSIM_HAVE_TLM
+                && o->model != "tlm"
+#endif
+            )
+                throw UserError("invalid value '" + o->model + "' for --model: exec runs " +
+                                exec_model_names());
+            const auto params = parse_params(o->params);
+            check_output_file("--out-left", o->out_left, true);
+            check_output_file("--report", o->report, false);
+            const isa::ImageVideoPort::Image left = read_input(o->left, "left image");
+            const isa::ImageVideoPort::Image right = read_input(o->right, "right image");
+            if (!o->left.empty() && !o->right.empty() &&
+                (left.width != right.width || left.height != right.height))
+                throw UserError("left and right images differ in size: " + o->left + " is " +
+                                std::to_string(left.width) + "x" + std::to_string(left.height) +
+                                ", " + o->right + " is " + std::to_string(right.width) + "x" +
+                                std::to_string(right.height));
+            const isa::ImageVideoPort::Image& shape = o->left.empty() ? right : left;
+            const int out_w = shape.width, out_h = shape.height;
+            if (!o->out_left.empty() && out_w == 0)
+                throw UserError(
+                    "--out-left needs an input image (--left or --right): the output image "
+                    "has the size of the inputs");
+            const isa::Program prog = read_program(*o);
+            // Decoding checks every word against this machine (LoadError) before the run;
+            // the core model runs this machine, the TLM model builds its own.
+            auto machine = std::make_unique<isa::Machine>(cfg);
+            try {
+                machine->load(prog);
+            } catch (const isa::LoadError& e) {
+                throw UserError(o->program + ": " + e.what());
+            }
+
+            std::printf("imapsim exec: %s, %zu instructions, %zu phase%s, model %s\n",
+                        o->program.c_str(), prog.code.size(), prog.phases.size(),
+                        prog.phases.size() == 1 ? "" : "s", o->model.c_str());
+            std::printf(
+                "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, watchdog "
+                "%llu cycles\n",
+                cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes,
+                static_cast<unsigned long long>(cfg.watchdog_cycles));
+            if (out_w > 0)
+                std::printf("  video: inputs %s%s%s, output port 0 %dx%d\n",
+                            o->left.empty() ? "" : ("0 = " + o->left).c_str(),
+                            !o->left.empty() && !o->right.empty() ? ", " : "",
+                            o->right.empty() ? "" : ("1 = " + o->right).c_str(), out_w, out_h);
+            else
+                std::printf("  video: no input images\n");
+            std::fflush(stdout);
+
+            ExecResult r;
+            try {
+#ifdef IMAPSIM_HAVE_TLM
+                if (o->model == "tlm") {
+                    machine.reset();
+                    r = run_tlm_model(cfg, prog, params, left, right, out_w, out_h);
+                } else
+#endif
+                    r = run_core(*machine, params, left, right, out_w, out_h);
+            } catch (const isa::LoadError& e) {
+                throw UserError(o->program + ": " + e.what());
+            } catch (const isa::ConfigError& e) {
+                throw UserError(e.what());
+            } catch (const isa::Fault& e) {
+                throw UserError(std::string("machine fault: ") + e.what(), kExitFault);
+            }
+
+            std::printf("  halted: yes, %llu instructions\n",
+                        static_cast<unsigned long long>(r.stats.instructions));
+            std::printf("  cycles: %llu, modeled time %.6f ms at %g MHz\n",
+                        static_cast<unsigned long long>(r.cycles), r.modeled_ms, cfg.clock_mhz);
+            const auto phases = fw::phase_table(prog, r.phase_cycles);
+            std::printf("  phases:\n");
+            for (const auto& [name, cyc] : phases)
+                std::printf("    %-14s %10llu cycles  %5.1f%%  %10.6f ms\n", name.c_str(),
+                            static_cast<unsigned long long>(cyc),
+                            r.cycles
+                                ? 100.0 * static_cast<double>(cyc) / static_cast<double>(r.cycles)
+                                : 0.0,
+                            cfg.seconds(cyc) * 1e3);
+            std::string regs;
+            for (int i = 0; i < isa::kCpRegs; ++i)
+                if (r.cp[static_cast<size_t>(i)] != 0)
+                    regs += " c" + std::to_string(i) + "=" +
+                            std::to_string(r.cp[static_cast<size_t>(i)]);
+            std::printf("  CP registers (non-zero):%s\n", regs.empty() ? " none" : regs.c_str());
+            std::printf("  wall: %.3f s (%s)\n", r.wall_s, o->model.c_str());
+
+            if (!o->out_left.empty()) {
+                cv::Mat img(r.out.height, r.out.width, CV_8UC1, r.out.pixels.data());
+                v::write_image_atomic(o->out_left, img);
+                std::printf("  output port 0 -> %s\n", o->out_left.c_str());
+            }
+            if (!o->report.empty()) {
+                nlohmann::json j;
+                j["program"] = o->program;
+                j["model"] = o->model;
+                j["halted"] = true;
+                j["cycles"] = r.cycles;
+                j["instructions"] = r.stats.instructions;
+                j["modeled_ms"] = r.modeled_ms;
+                j["wall_s"] = r.wall_s;
+                nlohmann::json ph = nlohmann::json::object();
+                for (const auto& [name, cyc] : phases) ph[name] = cyc;
+                j["phases"] = ph;
+                j["cp"] = r.cp;
+                nlohmann::json pb = nlohmann::json::object();
+                for (const auto& [i, val] : params) pb[std::to_string(i)] = val;
+                nlohmann::json mach = nlohmann::json::object();
+                for (const isa::ParamInfo& pi : cfg.list()) mach[pi.name] = pi.value;
+                j["params"] = {{"machine", mach}, {"param_block", pb}};
+                j["video"] = {{"left", o->left},
+                              {"right", o->right},
+                              {"out_width", out_w},
+                              {"out_height", out_h}};
+                v::write_text_atomic(o->report, j.dump(2) + "\n");
+                std::printf("  report -> %s\n", o->report.c_str());
+            }
+            return static_cast<int>(kExitOk);
+        }};
+}
+
+}  // namespace imapsim
