@@ -195,7 +195,7 @@ BOOST_AUTO_TEST_CASE(bad_flags_write_nothing) {
         {"--synthetic 0", "--synthetic"},
         {"--synthetic 3 --frames " + d.string(), "exactly one source"},
         {"--left-video x.avi", "must be given together"},
-        {"--left-video /nonexistent/l.avi --right-video /nonexistent/r.avi", "cannot open"},
+        {"--left-video /nonexistent/l.avi --right-video /nonexistent/r.avi", "no such file"},
         {"--frames /nonexistent/dir", "/nonexistent/dir"},
         {"--synthetic 3 --calib /nonexistent/calib.yml", "calib"},
         {"--synthetic 3 --D 300", "--D"},

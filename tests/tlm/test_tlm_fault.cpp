@@ -4,7 +4,6 @@
 #define BOOST_TEST_MODULE tlm_fault
 #include <boost/test/unit_test.hpp>
 
-#include "asan_main_stack.hpp"
 #include "tlm_test_util.hpp"
 
 using namespace tlmtest;
@@ -18,7 +17,6 @@ BOOST_AUTO_TEST_CASE(fault_propagates_with_pc) {
         halt
 )",
                                                    "fault.s");
-    AsanMainStack asan_main_stack;  // sanitizer build: see asan_main_stack.hpp
     const auto img = image(8, 2, 3);
     try {
         itlm::run_tlm(cfg, prog, {}, img, img, 8, 2, nullptr);

@@ -4,7 +4,6 @@
 #define BOOST_TEST_MODULE tlm_fault_video
 #include <boost/test/unit_test.hpp>
 
-#include "asan_main_stack.hpp"
 #include "tlm_test_util.hpp"
 
 using namespace tlmtest;
@@ -20,7 +19,6 @@ BOOST_AUTO_TEST_CASE(video_fault_propagates) {
         halt
 )",
                                                    "video.s");
-    AsanMainStack asan_main_stack;  // sanitizer build: see asan_main_stack.hpp
     try {
         itlm::run_tlm(cfg, prog, {}, image(10, 3, 0), image(10, 3, 1), 8, 2, nullptr);
         BOOST_FAIL("run_tlm did not throw");

@@ -297,6 +297,47 @@ cv::FileNode find_key(const Ctx& cx, const cv::FileNode& root, const std::vector
     cx.fail(msg);
 }
 
+// True when OpenCV's YAML parser cannot get past the text's first
+// document: nothing but blank and comment lines after a "..." end marker or
+// a second "---", and no line indented less than the first key (the root
+// map would end there). OpenCV 4.6's YAMLParser::parse() loops forever when,
+// looking for a second document, it meets a "-" that does not start "---".
+bool yaml_single_document(const std::string& text) {
+    int root = -1;
+    bool started = false, ended = false;
+    size_t b = 0;
+    while (b < text.size()) {
+        size_t e = text.find('\n', b);
+        if (e == std::string::npos) e = text.size();
+        std::string l = text.substr(b, e - b);
+        b = e + 1;
+        if (!l.empty() && l.back() == '\r') l.pop_back();
+        const size_t p = l.find_first_not_of(" \t");
+        if (p == std::string::npos || l[p] == '#') continue;
+        if (l[0] == '%') {
+            if (root >= 0 || started) return false;
+            continue;
+        }
+        if (ended) return false;
+        if (l.compare(0, 3, "...") == 0) {
+            ended = true;
+            continue;
+        }
+        size_t q = p;
+        if (l.compare(0, 3, "---") == 0) {
+            if (started || root >= 0) return false;
+            started = true;
+            q = l.find_first_not_of(" \t", 3);
+            if (q == std::string::npos || l[q] == '#') continue;
+        }
+        if (root < 0)
+            root = static_cast<int>(q);
+        else if (static_cast<int>(q) < root)
+            return false;
+    }
+    return true;
+}
+
 // The calibration's text, with a "%YAML:1.0" first line added to YAML that
 // lacks it (OpenCV requires it; *added_lines = 1 then); XML and JSON are
 // recognised by content. Refuses what OpenCV's parsers cannot survive.
@@ -328,6 +369,10 @@ std::string read_text(const Ctx& cx, const std::string& path, int* added_lines) 
     }
     if (xml && xml_ends_in_attribute(text))
         cx.fail("not a calibration file (cannot parse: file ends inside a tag)");
+    if (!xml && !json && !yaml_single_document(text))
+        cx.fail(
+            "not a calibration file (cannot parse: a second YAML document, or a line "
+            "indented less than the first key)");
     if (!xml && !json) {
         const int line = yaml_empty_key_line(text);
         if (line > 0)
