@@ -48,7 +48,7 @@ if [ $libfuzzer = 1 ]; then
         -max_total_time="$secs" -timeout=120 -rss_limit_mb=4096 -print_final_stats=1 \
         -artifact_prefix="lf-$t-" "lf-corpus-$t" "$root/tests/fuzz/corpus/$t") \
       >"$dir/tests/fuzz/lf-$t.log" 2>&1 || status=1
-    grep -E "^stat::number_of_executed_units|^stat::peak_rss|^#[0-9]+ *DONE|ERROR|crash-" \
+    grep -E "^stat::number_of_executed_units|^stat::new_units|^stat::peak_rss|==ERROR|ERROR: libFuzzer|crash-|timeout-|oracle violated" \
       "$dir/tests/fuzz/lf-$t.log" || tail -5 "$dir/tests/fuzz/lf-$t.log"
   done
   exit $status

@@ -98,7 +98,10 @@ std::string signature(const std::string& prefix, const std::string& message) {
     for (size_t i = 0; i < m.size(); ++i) {
         const char c = m[i];
         if (in_quote) {
-            if (c == '\'') {
+            // A quote closes the quoted text when a separator follows it
+            // (quoted names may contain quotes themselves).
+            const char n = i + 1 < m.size() ? m[i + 1] : ' ';
+            if (c == '\'' && std::strchr(" :),;.", n)) {
                 in_quote = false;
                 out += "_'";
             }

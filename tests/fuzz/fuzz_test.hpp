@@ -2,8 +2,8 @@
 // campaign per test (figures printed at the end).
 #pragma once
 
-#include <boost/test/unit_test.hpp>
 #include <algorithm>
+#include <boost/test/unit_test.hpp>
 #include <chrono>
 #include <iostream>
 #include <map>
@@ -30,13 +30,13 @@ struct Replayed {
 };
 
 // Replays every file of regressions/<target> under the campaign's crash and
-// hang guard (one minute per file): each must satisfy the oracle. Returns
-// the outcome of each, by file name.
+// hang guard (`limit` seconds per file): each must satisfy the oracle.
+// Returns the outcome of each, by file name.
 inline std::map<std::string, Replayed> replay_regressions(const std::string& target,
-                                                          const Checker& check) {
+                                                          const Checker& check, double limit = 60) {
     const auto& m = boost::unit_test::framework::master_test_suite();
     Options o = options(kDefaultSeconds, 1000000, m.argc, m.argv);
-    o.call_limit = std::min(o.call_limit, 60.0);
+    o.call_limit = limit;
     o.seconds = 1e9;
     o.iterations = 0;
     std::map<std::string, Replayed> out;
