@@ -88,21 +88,32 @@ std::string real_text(double v) {
     return fmt("%.10g", v);
 }
 
+// "A..B", "A..B:S" or "A..B*F" split into its texts (op 0, ':' or '*').
+struct RangeText {
+    std::string a, b, step;
+    char op = 0;
+};
+
+RangeText split_range(const std::string& item) {
+    RangeText r;
+    const size_t dots = item.find("..");
+    r.a = item.substr(0, dots);
+    r.b = item.substr(dots + 2);
+    const size_t k = r.b.find_first_of(":*");
+    if (k != std::string::npos) {
+        r.op = r.b[k];
+        r.step = r.b.substr(k + 1);
+        r.b.resize(k);
+    }
+    return r;
+}
+
 void expand_int_range(const std::string& flag, const std::string& text, const std::string& item,
                       std::vector<std::string>& out) {
-    const size_t dots = item.find("..");
-    const std::string a_txt = item.substr(0, dots);
-    std::string rest = item.substr(dots + 2);
-    char op = 0;
-    std::string s_txt;
-    const size_t k = rest.find_first_of(":*");
-    if (k != std::string::npos) {
-        op = rest[k];
-        s_txt = rest.substr(k + 1);
-        rest = rest.substr(0, k);
-    }
+    const RangeText r = split_range(item);
     long long a = 0, b = 0, s = 1;
-    if (!parse_i64(a_txt, &a) || !parse_i64(rest, &b) || (op && !parse_i64(s_txt, &s)))
+    const char op = r.op;
+    if (!parse_i64(r.a, &a) || !parse_i64(r.b, &b) || (op && !parse_i64(r.step, &s)))
         bad_list(flag, text, ValueType::Int, "'" + item + "' is not a range of integers");
     if (a > b) bad_list(flag, text, ValueType::Int, "range '" + item + "' has A > B");
     if (op == '*') {
@@ -128,19 +139,10 @@ void expand_int_range(const std::string& flag, const std::string& text, const st
 
 void expand_real_range(const std::string& flag, const std::string& text, const std::string& item,
                        std::vector<std::string>& out) {
-    const size_t dots = item.find("..");
-    const std::string a_txt = item.substr(0, dots);
-    std::string rest = item.substr(dots + 2);
-    char op = 0;
-    std::string s_txt;
-    const size_t k = rest.find_first_of(":*");
-    if (k != std::string::npos) {
-        op = rest[k];
-        s_txt = rest.substr(k + 1);
-        rest = rest.substr(0, k);
-    }
+    const RangeText r = split_range(item);
     double a = 0, b = 0, s = 1;
-    if (!parse_real(a_txt, &a) || !parse_real(rest, &b) || (op && !parse_real(s_txt, &s)))
+    const char op = r.op;
+    if (!parse_real(r.a, &a) || !parse_real(r.b, &b) || (op && !parse_real(r.step, &s)))
         bad_list(flag, text, ValueType::Real, "'" + item + "' is not a range of numbers");
     if (a > b) bad_list(flag, text, ValueType::Real, "range '" + item + "' has A > B");
     const double tol = 1e-9 * std::max(1.0, std::fabs(b));
