@@ -18,6 +18,13 @@ configure_build() {  # dir build-type extra-args...
   cmake --build "$dir" -j "$jobs"
 }
 
+# The fuzz tests' one-line figures (inputs tried, time, violations), from
+# the log of the ctest run that just passed.
+fuzz_figures() {  # build-dir
+  echo "-- fuzz figures ($1):"
+  grep -h "^fuzz summary:" "$1/Testing/Temporary/LastTest.log" 2>/dev/null || echo "   (none logged)"
+}
+
 case "$mode" in
   run|build|test) ;;
   *) echo "usage: $0 run|build|test" >&2; exit 2 ;;
@@ -34,9 +41,11 @@ case "$mode" in
   test)
     echo "== Release test suite"
     ctest --test-dir build --output-on-failure -j "$jobs"
+    fuzz_figures build
     echo "== Sanitizer (ASan+UBSan) test suite (every test; docs/testing.md)"
     configure_build build-asan Asan
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       ctest --test-dir build-asan --output-on-failure -j "$jobs"
+    fuzz_figures build-asan
     ;;
 esac

@@ -1,7 +1,8 @@
 // imapsim stream from the outside: a 30-frame synthetic sequence written as
 // raw (un-rectified) frames with its calibration, rectified back in the
 // stream, bit-exact on every frame and about as accurate as the directly
-// rendered sequence; a corrupt frame in the middle; Ctrl-C; bad flags.
+// rendered sequence; Ctrl-C. A corrupt frame in the middle and bad flags are
+// rows of the bad-input matrix (tests/reliability/test_error_matrix.cpp).
 #define BOOST_TEST_MODULE cli_stream
 #include <fcntl.h>
 #include <signal.h>
@@ -119,30 +120,6 @@ BOOST_AUTO_TEST_CASE(thirty_frames_rectified_round_trip) {
     BOOST_TEST(rt <= dir + 6.5);
 }
 
-BOOST_AUTO_TEST_CASE(corrupt_frame_in_the_middle) {
-    const fs::path d = tmpdir("bad");
-    const std::string seq = (d / "seq").string(), out = (d / "out").string();
-    const Result s = run("synth --frames 5 --size 64x32 --out-dir " + seq);
-    BOOST_REQUIRE_MESSAGE(s.code == 0, s.out);
-    fs::resize_file(fs::path(seq) / "left_0002.png", 40);  // truncated PNG
-    const Result r = run("stream --frames " + seq + " --D 16 --out-dir " + out);
-    BOOST_TEST_MESSAGE(r.out);
-    BOOST_TEST(r.code == 5);
-    BOOST_TEST(r.out.find("frame 2") != std::string::npos);
-    BOOST_TEST(r.out.find("left_0002.png") != std::string::npos);
-    const json log = read_json(fs::path(out) / "stream.json");
-    BOOST_TEST(log["state"] == "complete");
-    BOOST_REQUIRE_EQUAL(log["frames"].size(), 5u);
-    for (int k = 0; k < 5; ++k) {
-        const auto& f = log["frames"][static_cast<size_t>(k)];
-        BOOST_TEST(f["status"] == (k == 2 ? "bad-frame" : "ok"));
-    }
-    BOOST_TEST(log["frames"][2]["error"].get<std::string>().find("left_0002.png") !=
-               std::string::npos);
-    BOOST_TEST(count_files(out, "disp_") == 4u);
-    BOOST_TEST(!fs::exists(fs::path(out) / "disp_0002.png"));
-}
-
 BOOST_AUTO_TEST_CASE(ctrl_c_leaves_consistent_partial_logs) {
     const fs::path d = tmpdir("int");
     const std::string out = (d / "out").string();
@@ -180,34 +157,4 @@ BOOST_AUTO_TEST_CASE(ctrl_c_leaves_consistent_partial_logs) {
     BOOST_TEST(count_files(out, "disp_") == n);
     BOOST_TEST(count_files(out, ".") == 0u);  // no temporary files left
     for (size_t k = 0; k < n; ++k) BOOST_TEST(log["frames"][k]["index"] == k);
-}
-
-BOOST_AUTO_TEST_CASE(bad_flags_write_nothing) {
-    const fs::path d = tmpdir("flags");
-    const std::string out = (d / "out").string();
-    struct Row {
-        std::string args, message;
-    } rows[] = {
-        {"--synthetic 3 --fps 0", "--fps"},
-        {"--synthetic 3 --fps abc", "--fps"},
-        {"--synthetic 3 --deadline-ms -1", "--deadline-ms"},
-        {"--synthetic 3 --line-us 1000", "longer than the frame period"},
-        {"--synthetic 0", "--synthetic"},
-        {"--synthetic 3 --frames " + d.string(), "exactly one source"},
-        {"--left-video x.avi", "must be given together"},
-        {"--left-video /nonexistent/l.avi --right-video /nonexistent/r.avi", "no such file"},
-        {"--frames /nonexistent/dir", "/nonexistent/dir"},
-        {"--synthetic 3 --calib /nonexistent/calib.yml", "calib"},
-        {"--synthetic 3 --D 300", "--D"},
-        {"--synthetic 3 --mem-bytes 64", "does not fit"},
-    };
-    for (const Row& row : rows) {
-        const Result r = run("stream " + row.args + " --out-dir " + out);
-        BOOST_TEST_CONTEXT(row.args << "\n" << r.out) {
-            BOOST_TEST(r.code == 2);
-            BOOST_TEST(r.out.find(row.message) != std::string::npos);
-            BOOST_TEST(r.out.find("imapsim: error:") != std::string::npos);
-            BOOST_TEST((!fs::exists(out) || fs::is_empty(out)));
-        }
-    }
 }

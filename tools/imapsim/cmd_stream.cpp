@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -51,15 +52,24 @@ struct StreamOptions {
 class PeekedSource : public tb::FrameSource {
   public:
     explicit PeekedSource(std::unique_ptr<tb::FrameSource> src) : src_(std::move(src)) {}
-    // The first good frame's size, or an empty size if the stream has none.
+    // The first good frame's size, or an empty size if the stream has none
+    // (then first_error() tells why the first frame is bad).
     cv::Size first_good_size() {
         tb::SourceFrame f;
         while (src_->next(f)) {
+            if (f.error.empty()) {
+                held_.push_back(f);
+                return f.left.size();
+            }
+            if (first_error_.empty()) first_error_ = f.name + ": " + f.error;
+            f.left.release();  // a bad frame is only reported: keep no pixels
+            f.right.release();
+            f.gt.release();
             held_.push_back(f);
-            if (f.error.empty()) return f.left.size();
         }
         return {};
     }
+    const std::string& first_error() const { return first_error_; }
     bool next(tb::SourceFrame& f) override {
         if (!held_.empty()) {
             f = held_.front();
@@ -74,6 +84,7 @@ class PeekedSource : public tb::FrameSource {
   private:
     std::unique_ptr<tb::FrameSource> src_;
     std::deque<tb::SourceFrame> held_;
+    std::string first_error_;
 };
 
 class Limited : public tb::FrameSource {
@@ -333,6 +344,18 @@ Subcommand register_stream(CLI::App& app) {
                                        ? 0
                                        : static_cast<int>(parse_int_flag(
                                              "--max-frames", o->max_frames, 1, 1000000000));
+            // The side-by-side video is Motion-JPEG in an AVI container; any
+            // other name would get a file of the wrong type (OpenCV picks the
+            // container from the name, e.g. one JPEG frame for ".png").
+            if (!o->video.empty()) {
+                std::string ext = fs::path(o->video).extension().string();
+                for (char& c : ext)
+                    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                if (ext != ".avi")
+                    throw UserError("--video '" + o->video +
+                                    "': the side-by-side video is Motion-JPEG in AVI: use a "
+                                    "name ending in .avi");
+            }
             std::string json_path = o->json_log, csv_path = o->csv_log;
             if (!o->out_dir.empty()) {
                 if (json_path.empty()) json_path = (fs::path(o->out_dir) / "stream.json").string();
@@ -362,11 +385,16 @@ Subcommand register_stream(CLI::App& app) {
                 calib_note = o->calib;
             }
             if (max_frames > 0) source = std::make_unique<Limited>(std::move(source), max_frames);
+            // A stream without a single usable frame (unreadable files, or
+            // frames that do not match the calibration's image size) is an
+            // input error before any simulation, naming the first problem.
             auto peeked = std::make_unique<PeekedSource>(std::move(source));
-            if (size.empty()) size = peeked->first_good_size();
-            if (size.empty())
-                throw UserError("the stream holds no usable frame (" + peeked->describe() +
-                                "): every frame is unreadable or bad");
+            const cv::Size first = peeked->first_good_size();
+            if (first.empty())
+                throw UserError(
+                    "the stream holds no usable frame (" + peeked->describe() +
+                    "): every frame is unreadable or bad; the first: " + peeked->first_error());
+            if (size.empty()) size = first;
             source = tb::size_checked(std::move(peeked), size);
             if (!has_roi) roi = {0, 0, size.width, size.height};
             try {
