@@ -76,7 +76,8 @@ void StreamTestbench::camera() {
                 interrupted_ = true;
                 break;
             }
-            auto slot = std::make_shared<Slot>();
+            arriving_ = std::make_shared<Slot>();
+            Slot* const slot = arriving_.get();
             if (!source_.next(slot->frame)) break;
             const sc_core::sc_time tk = frame_period_ * static_cast<double>(k);
             if (sc_core::sc_time_stamp() < tk) sc_core::wait(tk - sc_core::sc_time_stamp());
@@ -86,7 +87,7 @@ void StreamTestbench::camera() {
                 slot->video.input[0] = firmware::to_video_image(vision::view_of(slot->frame.left));
                 slot->video.input[1] = firmware::to_video_image(vision::view_of(slot->frame.right));
             }
-            queue_.push_back(slot);
+            queue_.push_back(arriving_);
             queued_ev_.notify(sc_core::SC_ZERO_TIME);
             if (!good) continue;
             // Both cameras deliver line y at capture + (y + 1) line periods.
@@ -100,6 +101,7 @@ void StreamTestbench::camera() {
     } catch (...) {
         error_ = std::current_exception();
     }
+    arriving_ = nullptr;
     camera_done_ = true;
     queued_ev_.notify(sc_core::SC_ZERO_TIME);
 }
@@ -182,7 +184,9 @@ void StreamTestbench::control() {
 }
 
 void StreamTestbench::read_line(int port, int y, int x0, uint8_t* dst, int n) {
-    const std::shared_ptr<Slot> s = current_;
+    // A raw pointer (current_ owns the frame until the CP is done with it):
+    // this runs on the CP's stack, which may stay suspended here for good.
+    Slot* const s = current_.get();
     if (!s) throw std::runtime_error("video input read with no frame in progress");
     if (port >= 0 && port <= 1 && y >= 0 && y < s->video.input[port].height)
         while (s->arrived <= y) sc_core::wait(line_ev_);

@@ -121,6 +121,11 @@ class StreamTestbench : public sc_core::sc_module, private isa::VideoPort {
     bool camera_done_ = false;
     sc_core::sc_event queued_ev_, line_ev_;
     std::shared_ptr<Slot> current_;  // frame being processed
+    // The frame the camera is delivering. A member, not a local of camera():
+    // when the stream stops early (Ctrl-C, an error) the camera thread stays
+    // suspended and its stack is never unwound, so nothing it owns may live
+    // there.
+    std::shared_ptr<Slot> arriving_;
     std::vector<FrameRecord> records_;
     bool interrupted_ = false;
     std::exception_ptr error_;
