@@ -10,11 +10,11 @@
 // with known content (each must be unchanged).
 //
 // Adding a row: one ERROR_ROW(name, exit code, "arguments", "substring", ...).
-// In the arguments {in} is the folder of the prepared inputs (see Inputs)
-// and {o} the row's output folder. Rows are grouped in test suites; CMake
-// registers one CTest test per suite (reliability.errors.<suite>), found in
-// this file, so a new suite needs no CMake change; every test case must be
-// inside a suite (one at the top level would not be run by CTest).
+// In the arguments {in} is the folder of the prepared inputs (see Inputs),
+// {o} the row's output folder and {ro} a folder where no file can be created. Rows are grouped in
+// test suites; CMake registers one CTest test per suite (reliability.errors.<suite>), found in this
+// file, so a new suite needs no CMake change; every test case must be inside a suite (one at the
+// top level would not be run by CTest).
 #define BOOST_TEST_MODULE reliability_error_matrix
 #include <unistd.h>
 
@@ -122,7 +122,15 @@ struct Inputs {
         make();
         files = listing(dir);
     }
-    ~Inputs() { fs::remove_all(dir); }
+    ~Inputs() {
+        if (!read_only.empty() && read_only.string().rfind(dir.string(), 0) == 0)
+            fs::permissions(read_only, fs::perms::owner_all);
+        fs::remove_all(dir);
+    }
+
+    // A folder in which no file can be created: readonly/ (mode 0555), or,
+    // for root, whom permissions do not stop, /sys (sysfs refuses new files).
+    fs::path read_only;
 
     void make() {
         cv::RNG rng(12345);
@@ -232,6 +240,16 @@ struct Inputs {
         calib("t0", {{"T", "[0, 0, 0]"}});
         calib("size80", {{"image_width", "80"}});
         write_file(dir / "calib_text.yml", "this is not a calibration file\n");
+
+        if (::geteuid() == 0) {
+            read_only = "/sys";
+        } else {
+            read_only = dir / "readonly";
+            fs::create_directories(read_only);
+            fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec |
+                                           fs::perms::group_read | fs::perms::group_exec |
+                                           fs::perms::others_read | fs::perms::others_exec);
+        }
     }
 };
 
@@ -242,7 +260,8 @@ Inputs& inputs() {
 
 std::string substitute(std::string s, const fs::path& o) {
     const std::pair<std::string, std::string> subs[] = {{"{in}", inputs().dir.string()},
-                                                        {"{o}", o.string()}};
+                                                        {"{o}", o.string()},
+                                                        {"{ro}", inputs().read_only.string()}};
     for (const auto& [key, val] : subs)
         for (size_t p = s.find(key); p != std::string::npos; p = s.find(key, p + val.size()))
             s.replace(p, key.size(), val);
@@ -517,6 +536,17 @@ ERROR_ROW(run_out_is_folder, kInput, RUN_IN " --report {o}/r.json --out {in}/fol
           "is a folder")
 ERROR_ROW(run_out_bad_type, kInput, RUN_IN " --report {o}/r.json --out {o}/map.txt", "--out",
           "map.txt", ".png")
+// A folder where files cannot be created (permissions, read-only file
+// system) is found before the work too, not when the result is written.
+ERROR_ROW(run_out_folder_not_writable, kInput, RUN_IN " --report {o}/r.json --out {ro}/map.png",
+          "--out", "map.png", "cannot create files in folder")
+ERROR_ROW(run_vcd_folder_not_writable, kInput, RUN " --vcd {ro}/w.vcd", "--vcd",
+          "cannot create files in folder")
+ERROR_ROW(stream_out_dir_not_writable, kInput, STREAM " --out-dir {ro}/out", "--out-dir",
+          "cannot create files in folder")
+ERROR_ROW(sweep_csv_folder_not_writable, kInput,
+          "sweep --roi-size 64x32 --D 8 --json {o}/s.json --csv {ro}/s.csv", "--csv",
+          "cannot create files in folder")
 ERROR_ROW(run_report_missing_folder, kInput, RUN_IN " --out {o}/map.png --report {o}/nosuch/r.json",
           "--report", "does not exist")
 ERROR_ROW(golden_out_missing_folder, kInput, "golden " PAIR " --D 8 --out {o}/nosuch/map.png",
@@ -596,7 +626,7 @@ ERROR_ROW(stream_mem_too_small, kInput, STREAM " --mem-bytes 64", "does not fit"
 ERROR_ROW(stream_video_not_avi, kInput, STREAM " --video {o}/v.png", "--video", "v.png", ".avi")
 ERROR_ROW(stream_json_missing_folder, kInput,
           "stream --frames {in}/frames --D 8 --json {o}/nosuch/s.json", "nosuch/s.json",
-          "cannot write")
+          "does not exist")
 ERROR_ROW(stream_out_dir_parent_is_file, kInput, STREAM " --out-dir {in}/grey.png/out", "--out-dir",
           "grey.png", "cannot create")
 BOOST_AUTO_TEST_SUITE_END()

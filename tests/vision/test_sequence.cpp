@@ -318,7 +318,13 @@ BOOST_AUTO_TEST_CASE(write_sequence_rectified_and_raw) {
     // (up to the resampling blur; see test_calib), gt is unchanged.
     const fs::path raw = d.path() / "raw";
     const std::string calib = (d.path() / "calib.yml").string();
-    BOOST_TEST(v::write_sequence(raw.string(), 9, W, H, F, calib) == 24);
+    // The progress callback runs once per frame, after the frame's files.
+    std::vector<int> calls;
+    BOOST_TEST(v::write_sequence(raw.string(), 9, W, H, F, calib, [&](int done) {
+                   BOOST_TEST(vision_test::count_entries(raw) == 3 * done);
+                   calls.push_back(done);
+               }) == 24);
+    BOOST_TEST(calls == (std::vector<int>{1, 2, 3}), boost::test_tools::per_element());
     BOOST_TEST(vision_test::count_entries(raw) == 3 * F);
     const v::StereoCalib c = v::load_stereo_calib(calib);
     BOOST_TEST(c.size == cv::Size(W, H));

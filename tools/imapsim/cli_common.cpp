@@ -1,8 +1,12 @@
 #include "cli_common.hpp"
 
+#include <unistd.h>
+
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -46,6 +50,23 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
     return v;
 }
 
+namespace {
+
+// Whether files can be created in `dir` (permissions, read-only file
+// system): creates a uniquely named empty file there and removes it.
+// Returns the reason when not.
+std::string creatable_in(const std::filesystem::path& dir) {
+    std::string probe =
+        ((dir.empty() ? std::filesystem::path(".") : dir) / ".imapsim-write-check-XXXXXX").string();
+    const int fd = ::mkstemp(probe.data());
+    if (fd < 0) return std::strerror(errno);
+    ::close(fd);
+    ::unlink(probe.c_str());
+    return "";
+}
+
+}  // namespace
+
 void check_output_file(const std::string& flag, const std::string& path, bool image) {
     namespace fs = std::filesystem;
     if (path.empty()) return;
@@ -62,6 +83,46 @@ void check_output_file(const std::string& flag, const std::string& path, bool im
                         (p.extension().empty() ? std::string(" (no extension)")
                                                : " ('" + p.extension().string() + "')") +
                         "; use e.g. .png");
+    const std::string why = creatable_in(dir);
+    if (!why.empty())
+        throw UserError(flag + " '" + path + "': cannot create files in folder '" +
+                        (dir.empty() ? std::string(".") : dir.string()) + "' (" + why + ")");
+}
+
+void check_output_dir(const std::string& flag, const std::string& dir) {
+    namespace fs = std::filesystem;
+    if (dir.empty()) return;
+    std::error_code ec;
+    // The folder itself if it exists, else its nearest existing ancestor,
+    // in which the missing folders will be created.
+    fs::path at = fs::path(dir);
+    while (!at.empty() && !fs::exists(at, ec)) {
+        const fs::path up = at.parent_path();
+        if (up == at) break;
+        at = up;
+    }
+    if (!at.empty() && fs::exists(at, ec) && !fs::is_directory(at, ec))
+        throw UserError(flag + " '" + dir + "': cannot create it: '" + at.string() +
+                        "' is not a folder");
+    const std::string why = creatable_in(at);
+    if (!why.empty())
+        throw UserError(flag + " '" + dir + "': cannot create files in folder '" +
+                        (at.empty() ? std::string(".") : at.string()) + "' (" + why + ")");
+}
+
+void create_output_dir(const std::string& flag, const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw UserError(flag + " '" + dir + "' exists and is not a folder");
+    fs::create_directories(dir, ec);
+    if (ec) throw UserError(flag + " '" + dir + "': cannot create (" + ec.message() + ")");
+}
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
 }
 
 nlohmann::json algo_params_json(const g::Params& p) {

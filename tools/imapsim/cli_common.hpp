@@ -69,9 +69,20 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
                        bool lo_open);
 
 // Checks, before the work, that `path` (given with `flag`) can be written
-// later: its folder exists and it is not a folder; with `image`, OpenCV can
+// later: its folder exists, files can be created in it (permissions,
+// read-only file system), and it is not a folder; with `image`, OpenCV can
 // write its extension. UserError (exit 2) otherwise; nothing when empty.
 void check_output_file(const std::string& flag, const std::string& path, bool image);
+
+// The same for an output folder (`--out-dir`): it is a folder or can be
+// created, and files can be created in it.
+void check_output_dir(const std::string& flag, const std::string& dir);
+// Creates an output folder (and its missing parents); UserError naming
+// `flag` if it is a file or cannot be created.
+void create_output_dir(const std::string& flag, const std::string& dir);
+
+// The extension of `path` in lower case, with its dot (".avi"); "" if none.
+std::string lower_extension(const std::string& path);
 
 // Each subcommand registers itself on the app and returns a runner that is
 // called if the subcommand was selected. The runner returns the exit code.

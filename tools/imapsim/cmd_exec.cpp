@@ -1,8 +1,6 @@
 // imapsim exec: runs a user's program (IMAPFW01 file, or assembler source
 // ending in .s / .asm) on a model of the machine, with optional video inputs
 // and an output image on port 0 (docs/exec.md).
-#include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -48,12 +46,7 @@ struct ExecResult {
 };
 
 bool is_source(const std::string& path) {
-    std::string ext;
-    const size_t dot = path.find_last_of('.');
-    if (dot != std::string::npos && path.find('/', dot) == std::string::npos)
-        ext = path.substr(dot);
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lower_extension(path);
     return ext == ".s" || ext == ".asm";
 }
 

@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -257,14 +256,6 @@ class SideBySide {
     bool done_ = false;
 };
 
-void prepare_out_dir(const std::string& dir) {
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        throw UserError("--out-dir '" + dir + "' exists and is not a folder");
-    fs::create_directories(dir, ec);
-    if (ec) throw UserError("--out-dir '" + dir + "': cannot create (" + ec.message() + ")");
-}
-
 }  // namespace
 
 Subcommand register_stream(CLI::App& app) {
@@ -348,14 +339,28 @@ Subcommand register_stream(CLI::App& app) {
             // other name would get a file of the wrong type (OpenCV picks the
             // container from the name, e.g. one JPEG frame for ".png").
             if (!o->video.empty()) {
-                std::string ext = fs::path(o->video).extension().string();
-                for (char& c : ext)
-                    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-                if (ext != ".avi")
+                if (lower_extension(o->video) != ".avi")
                     throw UserError("--video '" + o->video +
                                     "': the side-by-side video is Motion-JPEG in AVI: use a "
                                     "name ending in .avi");
             }
+            // Every output path can be written, before any work (the logs
+            // are first written a second into the stream).
+            check_output_dir("--out-dir", o->out_dir);
+            // A file inside --out-dir: its folder is created with it, and
+            // checked above.
+            auto check_file = [&](const char* flag, const std::string& path) {
+                const auto norm = [](const fs::path& q) {
+                    return (fs::absolute(q) / "").lexically_normal();
+                };
+                if (!o->out_dir.empty() && !path.empty() &&
+                    norm(fs::path(path).parent_path()) == norm(o->out_dir))
+                    return;
+                check_output_file(flag, path, false);
+            };
+            check_file("--json", o->json_log);
+            check_file("--csv", o->csv_log);
+            check_file("--video", o->video);
             std::string json_path = o->json_log, csv_path = o->csv_log;
             if (!o->out_dir.empty()) {
                 if (json_path.empty()) json_path = (fs::path(o->out_dir) / "stream.json").string();
@@ -437,7 +442,7 @@ Subcommand register_stream(CLI::App& app) {
             std::fflush(stdout);
 
             // ---- outputs (nothing is created before this point) ---------
-            if (!o->out_dir.empty()) prepare_out_dir(o->out_dir);
+            if (!o->out_dir.empty()) create_output_dir("--out-dir", o->out_dir);
             std::unique_ptr<SideBySide> video;
             if (!o->video.empty())
                 video = std::make_unique<SideBySide>(o->video, timing.fps, roi, p.D);

@@ -301,9 +301,9 @@ Subcommand register_sweep(CLI::App& app) {
             }
 
             // Outputs (checked before the run).
-            sweep::check_output_path("--csv", o->csv, false);
-            sweep::check_output_path("--json", o->json, false);
-            sweep::check_output_path("--plot", o->plot, true);
+            check_output_file("--csv", o->csv, false);
+            check_output_file("--json", o->json, false);
+            check_output_file("--plot", o->plot, true);
             if (!o->plot.empty()) {
                 int w = 0, h = 0;
                 char x = 0;

@@ -2,7 +2,6 @@
 // left-view ground truth) to a folder, or with --frames a synthetic sequence
 // (left_NNNN.png, right_NNNN.png, gt_NNNN.png), with --calib-out as raw camera
 // frames plus their calibration (docs/calibration.md).
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +11,7 @@
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/sequence.hpp"
 #include "imap/vision/synth.hpp"
+#include "progress.hpp"
 
 namespace imapsim {
 
@@ -82,9 +82,7 @@ Subcommand register_synth(CLI::App& app) {
                 if (!o->calib_out.empty()) {
                     if (frames == 0)
                         throw UserError("--calib-out needs --frames (it writes a raw sequence)");
-                    std::string ext = fs::path(o->calib_out).extension().string();
-                    for (char& c : ext)
-                        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                    const std::string ext = lower_extension(o->calib_out);
                     if (ext != ".yml" && ext != ".yaml" && ext != ".xml" && ext != ".json")
                         throw UserError("invalid value '" + o->calib_out +
                                         "' for --calib-out: expected a file name ending in .yml, "
@@ -93,16 +91,16 @@ Subcommand register_synth(CLI::App& app) {
                     if (fs::is_directory(o->calib_out, ec))
                         throw UserError("--calib-out '" + o->calib_out + "' is a folder");
                 }
-                std::error_code ec;
-                if (fs::exists(o->out_dir, ec) && !fs::is_directory(o->out_dir, ec))
-                    throw UserError("--out-dir '" + o->out_dir + "' exists and is not a folder");
-                fs::create_directories(o->out_dir, ec);
-                if (ec)
-                    throw UserError("--out-dir '" + o->out_dir + "': cannot create (" +
-                                    ec.message() + ")");
+                create_output_dir("--out-dir", o->out_dir);
                 if (frames > 0) {
-                    const int max_disp =
-                        v::write_sequence(o->out_dir, seed, w, h, frames, o->calib_out);
+                    int max_disp = 0;
+                    {
+                        // A bar on a terminal (a long sequence of big frames
+                        // takes minutes); nothing in logs.
+                        Progress progress("frames", static_cast<size_t>(frames));
+                        max_disp = v::write_sequence(o->out_dir, seed, w, h, frames, o->calib_out,
+                                                     [&](int) { progress.step(""); });
+                    }
                     char range[32];
                     if (frames == 1)
                         std::snprintf(range, sizeof range, "0000");

@@ -43,8 +43,8 @@ Subcommand register_table1(CLI::App& app) {
 
     return {sub, [o]() {
                 check_model_name(o->model);
-                sweep::check_output_path("--csv", o->csv, false);
-                sweep::check_output_path("--json", o->json, false);
+                check_output_file("--csv", o->csv, false);
+                check_output_file("--json", o->json, false);
                 sweep::Spec s;
                 s.command = "table1";
                 s.model = o->model;

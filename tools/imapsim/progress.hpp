@@ -1,6 +1,7 @@
-// Progress output of the long-running subcommands (stream, sweep): on a
-// terminal, a one-line bar redrawn in place (done/total, rate, ETA) with the
-// per-item lines scrolling above it; otherwise plain lines only (logs, CI).
+// Progress output of the long-running subcommands (stream, sweep, synth
+// --frames): on a terminal, a one-line bar redrawn in place (done/total,
+// rate, ETA) with the per-item lines scrolling above it; otherwise plain
+// lines only (logs, CI).
 #pragma once
 
 #include <chrono>

@@ -373,19 +373,6 @@ int Result::exit_code() const {
     return kExitOk;
 }
 
-void check_output_path(const std::string& flag, const std::string& path, bool image) {
-    if (path.empty()) return;
-    const fs::path p(path);
-    const fs::path dir = p.parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !fs::is_directory(dir, ec))
-        throw UserError(flag + " '" + path + "': folder " + dir.string() + " does not exist");
-    if (fs::is_directory(p, ec)) throw UserError(flag + " '" + path + "': is a folder");
-    if (image && !cv::haveImageWriter(path))
-        throw UserError(flag + " '" + path +
-                        "': OpenCV cannot write this image type (use .png, .jpg, .bmp, ...)");
-}
-
 // ---- planning a point -------------------------------------------------------------
 
 namespace {

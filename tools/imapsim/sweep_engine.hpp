@@ -135,8 +135,4 @@ std::string csv_field(const std::string& s);
 // "%.3f"-style formatting into a string.
 std::string fmt(const char* f, double v);
 
-// Checks before a long run that an output file can be written later: its
-// folder exists; for images, OpenCV can write the extension.
-void check_output_path(const std::string& flag, const std::string& path, bool image);
-
 }  // namespace imapsim::sweep

@@ -413,7 +413,7 @@ std::vector<FramePair> list_frame_pairs(const std::string& dir) {
 }
 
 int write_sequence(const std::string& dir, uint64_t seed, int width, int height, int frames,
-                   const std::string& calib_file) {
+                   const std::string& calib_file, const std::function<void(int)>& on_frame) {
     const SequenceGenerator gen(seed, width, height, frames);
     std::error_code ec;
     const fs::path out(dir);
@@ -439,6 +439,7 @@ int write_sequence(const std::string& dir, uint64_t seed, int width, int height,
         write_image_atomic((out / ("left_" + std::string(num) + ".png")).string(), left);
         write_image_atomic((out / ("right_" + std::string(num) + ".png")).string(), right);
         write_image_atomic((out / ("gt_" + std::string(num) + ".png")).string(), f.gt);
+        if (on_frame) on_frame(k + 1);
     }
     return gen.max_disp();
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -97,7 +98,10 @@ std::vector<FramePair> list_frame_pairs(const std::string& dir);
 // `calib_file` (before the frames, so a bad name fails before any frame is
 // written). Returns the max disparity. Throws InputError for write errors
 // and std::invalid_argument for arguments make_sequence_frame rejects.
+// `on_frame` (optional) is called after each frame's files are written, with
+// the number of frames written so far (progress output).
 int write_sequence(const std::string& dir, uint64_t seed, int width, int height, int frames,
-                   const std::string& calib_file);
+                   const std::string& calib_file,
+                   const std::function<void(int)>& on_frame = nullptr);
 
 }  // namespace imap::vision
