@@ -52,17 +52,18 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
 
 namespace {
 
-// Whether files can be created in `dir` (permissions, read-only file
+// Throws unless files can be created in `dir` (permissions, read-only file
 // system): creates a uniquely named empty file there and removes it.
-// Returns the reason when not.
-std::string creatable_in(const std::filesystem::path& dir) {
-    std::string probe =
-        ((dir.empty() ? std::filesystem::path(".") : dir) / ".imapsim-write-check-XXXXXX").string();
+void require_creatable(const std::string& flag, const std::string& path,
+                       const std::filesystem::path& dir) {
+    const std::filesystem::path where = dir.empty() ? std::filesystem::path(".") : dir;
+    std::string probe = (where / ".imapsim-write-check-XXXXXX").string();
     const int fd = ::mkstemp(probe.data());
-    if (fd < 0) return std::strerror(errno);
+    if (fd < 0)
+        throw UserError(flag + " '" + path + "': cannot create files in folder '" + where.string() +
+                        "' (" + std::strerror(errno) + ")");
     ::close(fd);
     ::unlink(probe.c_str());
-    return "";
 }
 
 }  // namespace
@@ -83,10 +84,7 @@ void check_output_file(const std::string& flag, const std::string& path, bool im
                         (p.extension().empty() ? std::string(" (no extension)")
                                                : " ('" + p.extension().string() + "')") +
                         "; use e.g. .png");
-    const std::string why = creatable_in(dir);
-    if (!why.empty())
-        throw UserError(flag + " '" + path + "': cannot create files in folder '" +
-                        (dir.empty() ? std::string(".") : dir.string()) + "' (" + why + ")");
+    require_creatable(flag, path, dir);
 }
 
 void check_output_dir(const std::string& flag, const std::string& dir) {
@@ -104,10 +102,7 @@ void check_output_dir(const std::string& flag, const std::string& dir) {
     if (!at.empty() && fs::exists(at, ec) && !fs::is_directory(at, ec))
         throw UserError(flag + " '" + dir + "': cannot create it: '" + at.string() +
                         "' is not a folder");
-    const std::string why = creatable_in(at);
-    if (!why.empty())
-        throw UserError(flag + " '" + dir + "': cannot create files in folder '" +
-                        (at.empty() ? std::string(".") : at.string()) + "' (" + why + ")");
+    require_creatable(flag, dir, at);
 }
 
 void create_output_dir(const std::string& flag, const std::string& dir) {
