@@ -1,7 +1,8 @@
 // Determinism of imapsim run: two runs of the same case on the same model
 // give byte-identical disparity maps, VCD and GTKWave files, and reports
 // that are equal once the wall-clock fields are removed; the three models
-// (core, tlm, rtl) give identical maps, cycles and phases.
+// (core, tlm, rtl) give identical maps, cycles and phases. The same for a
+// stream: per-frame maps, side-by-side video and logs.
 #define BOOST_TEST_MODULE reliability_determinism
 #include <unistd.h>
 
@@ -10,7 +11,9 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_test_util.hpp"
 
@@ -123,4 +126,67 @@ BOOST_AUTO_TEST_CASE(models_agree) {
         }
     }
     for (auto& [m, r] : first_runs()) fs::remove_all(r.dir);
+}
+
+// Two runs of the same stream: byte-identical disparity maps and video, and
+// logs equal once the per-frame wall time (the CSV's wall_s column, the
+// JSON's frames[].wall_s) is removed.
+BOOST_AUTO_TEST_CASE(two_streams_are_identical) {
+    struct Stream {
+        fs::path dir;
+        std::map<std::string, std::string> files;  // name -> bytes
+        json log;
+        std::vector<std::string> csv;  // rows without the wall_s field
+    };
+    auto stream = [](const std::string& tag) {
+        Stream st;
+        st.dir = fs::temp_directory_path() /
+                 ("imapsim-determinism-" + std::to_string(::getpid()) + "-stream-" + tag);
+        fs::remove_all(st.dir);
+        fs::create_directories(st.dir);
+        const clitest::Result r =
+            clitest::run("stream --synthetic 3 --size 64x32 --D 8 --out-dir " +
+                         (st.dir / "o").string() + " --video " + (st.dir / "o" / "v.avi").string());
+        BOOST_TEST_INFO(r.out);
+        BOOST_REQUIRE(r.code == 0);
+        for (const auto& e : fs::directory_iterator(st.dir / "o"))
+            st.files[e.path().filename().string()] = read_file(e.path());
+        st.log = json::parse(st.files.at("stream.json"));
+        for (json& f : st.log.at("frames")) {
+            BOOST_TEST(f.contains("wall_s"));
+            f.erase("wall_s");
+        }
+        std::istringstream csv(st.files.at("stream.csv"));
+        size_t wall_col = std::string::npos;
+        for (std::string line; std::getline(csv, line);) {
+            std::vector<std::string> fields;
+            std::istringstream ls(line);
+            for (std::string f; std::getline(ls, f, ',');) fields.push_back(f);
+            if (wall_col == std::string::npos) {  // the header names the column
+                for (size_t i = 0; i < fields.size(); ++i)
+                    if (fields[i] == "wall_s") wall_col = i;
+                BOOST_REQUIRE(wall_col != std::string::npos);
+            }
+            BOOST_REQUIRE(wall_col < fields.size());
+            fields.erase(fields.begin() + static_cast<long>(wall_col));
+            std::string row;
+            for (const std::string& f : fields) row += f + ",";
+            st.csv.push_back(row);
+        }
+        return st;
+    };
+    const Stream a = stream("a"), b = stream("b");
+    std::vector<std::string> names;
+    for (const auto& [name, bytes] : a.files) names.push_back(name);
+    BOOST_TEST(names == (std::vector<std::string>{"disp_0000.png", "disp_0001.png", "disp_0002.png",
+                                                  "stream.csv", "stream.json", "v.avi"}),
+               boost::test_tools::per_element());
+    BOOST_TEST(b.files.size() == a.files.size());
+    for (const char* f : {"disp_0000.png", "disp_0001.png", "disp_0002.png", "v.avi"})
+        BOOST_TEST(a.files.at(f) == b.files.at(f), f << " byte-identical");
+    BOOST_TEST(a.log == b.log, "stream.json equal without wall_s");
+    BOOST_TEST(a.csv == b.csv, boost::test_tools::per_element());
+    BOOST_TEST(a.csv.size() == 4u);
+    fs::remove_all(a.dir);
+    fs::remove_all(b.dir);
 }
