@@ -111,6 +111,8 @@ std::set<std::string> listing(const fs::path& dir) {
 //   calib_*.yml              stereo calibrations for 64x32 frames (docs/calibration.md):
 //                            ok, nokey (no D2), k1_2x3, nan (D2), rot (R not a rotation),
 //                            t0 (zero baseline), size80 (made for 80x32), text (not YAML)
+//   readonly/                mode 0555: {ro} when creating a file in it fails (else /sys
+//                            or /proc, for root)
 struct Inputs {
     fs::path dir;
     std::set<std::string> files;  // listing after creation: rows must not add to it
@@ -123,13 +125,12 @@ struct Inputs {
         files = listing(dir);
     }
     ~Inputs() {
-        if (!read_only.empty() && read_only.string().rfind(dir.string(), 0) == 0)
-            fs::permissions(read_only, fs::perms::owner_all);
+        std::error_code ec;
+        fs::permissions(dir / "readonly", fs::perms::owner_all, ec);
         fs::remove_all(dir);
     }
 
-    // A folder in which no file can be created: readonly/ (mode 0555), or,
-    // for root, whom permissions do not stop, /sys (sysfs refuses new files).
+    // A folder in which no file can be created (see make()).
     fs::path read_only;
 
     void make() {
@@ -241,15 +242,27 @@ struct Inputs {
         calib("size80", {{"image_width", "80"}});
         write_file(dir / "calib_text.yml", "this is not a calibration file\n");
 
-        if (::geteuid() == 0) {
-            read_only = "/sys";
-        } else {
-            read_only = dir / "readonly";
-            fs::create_directories(read_only);
-            fs::permissions(read_only, fs::perms::owner_read | fs::perms::owner_exec |
-                                           fs::perms::group_read | fs::perms::group_exec |
-                                           fs::perms::others_read | fs::perms::others_exec);
+        // The first candidate where creating a file really fails: a folder
+        // of mode 0555 stops an ordinary user, not root (nor a process with
+        // CAP_DAC_OVERRIDE); sysfs and procfs refuse new files to everyone.
+        const fs::path mine = dir / "readonly";
+        fs::create_directories(mine);
+        fs::permissions(mine, fs::perms::owner_read | fs::perms::owner_exec |
+                                  fs::perms::group_read | fs::perms::group_exec |
+                                  fs::perms::others_read | fs::perms::others_exec);
+        for (const fs::path& c : {mine, fs::path("/sys"), fs::path("/proc")}) {
+            std::string probe = (c / "probe-XXXXXX").string();
+            const int fd = ::mkstemp(probe.data());
+            if (fd >= 0) {
+                ::close(fd);
+                ::unlink(probe.c_str());
+                continue;
+            }
+            read_only = c;
+            break;
         }
+        BOOST_REQUIRE_MESSAGE(!read_only.empty(),
+                              "no folder found where creating a file fails ({ro} rows)");
     }
 };
 
