@@ -304,7 +304,7 @@ BOOST_AUTO_TEST_CASE(write_sequence_rectified_and_raw) {
     BOOST_TEST(vision_test::count_entries(plain) == 3 * F);
     for (int k = 0; k < F; ++k) {
         const v::SequenceFrame f = v::make_sequence_frame(9, W, H, k, F);
-        char num[8];
+        char num[16];
         std::snprintf(num, sizeof num, "%04d", k);
         const std::string n(num);
         BOOST_TEST(same(v::load_grey8((plain / ("left_" + n + ".png")).string(), "l"), f.left));
