@@ -14,20 +14,17 @@
 #include <string>
 #include <vector>
 
+#include "imap/vision/splitmix64.hpp"
+
 namespace imap::fuzz {
 
 using Bytes = std::vector<uint8_t>;
 
-// splitmix64: small, fast, and the same sequence on every platform.
-class Rng {
+// The fuzzers' generator: splitmix64 (the same sequence on every platform)
+// with the draws the mutators use.
+class Rng : public vision::SplitMix64 {
   public:
-    explicit Rng(uint64_t seed) : s_(seed) {}
-    uint64_t next() {
-        uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
+    using SplitMix64::SplitMix64;
     // Uniform-enough value in 0..n-1 (0 when n == 0).
     uint64_t below(uint64_t n) { return n == 0 ? 0 : next() % n; }
     size_t index(size_t n) { return static_cast<size_t>(below(n)); }
@@ -36,9 +33,6 @@ class Rng {
     const T& pick(const std::vector<T>& v) {
         return v[index(v.size())];
     }
-
-  private:
-    uint64_t s_;
 };
 
 // Budget and seed. Defaults come from the caller; the environment

@@ -8,29 +8,20 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "imap/vision/splitmix64.hpp"
 #include "imap/vision/synth.hpp"
 
 namespace imap::vision::detail {
 
-// splitmix64: tiny, well-mixed, and identical everywhere (no std::
-// distributions, whose output differs between standard libraries).
-class Rng {
+// The scenes' generator: splitmix64 with the draws the scenes use.
+class Rng : public SplitMix64 {
   public:
-    explicit Rng(uint64_t seed) : s_(seed) {}
-    uint64_t next() {
-        uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
+    using SplitMix64::SplitMix64;
     // Uniform integer in lo..hi (inclusive); lo <= hi.
     int range(int lo, int hi) {
         const uint64_t n = static_cast<uint64_t>(static_cast<int64_t>(hi) - lo + 1);
         return lo + static_cast<int>(((next() >> 32) * n) >> 32);
     }
-
-  private:
-    uint64_t s_;
 };
 
 inline int clamp255(int v) {
