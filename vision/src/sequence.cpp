@@ -347,7 +347,8 @@ std::vector<FramePair> list_frame_pairs(const std::string& dir) {
     std::vector<FramePair> pairs;
 
     const fs::path ldir = find_subdir(root, "left"), rdir = find_subdir(root, "right");
-    if (!ldir.empty() && !rdir.empty()) {
+    const bool subfolders = !ldir.empty() && !rdir.empty();
+    if (subfolders) {
         // left/ and right/ subfolders: equal file names.
         for (const std::string& name : image_files(ldir, who)) {
             FramePair p;
@@ -360,17 +361,6 @@ std::vector<FramePair> list_frame_pairs(const std::string& dir) {
                 p.error = "no right frame '" + rp.string() + "' for left frame '" + p.left + "'";
             pairs.push_back(std::move(p));
         }
-        // A file that is the right frame of another pair is not a left frame
-        // itself (e.g. "cleft_right_4.png", partner of "cleft_left_4.png").
-        std::set<std::string> rights;
-        for (const FramePair& p : pairs)
-            if (!p.right.empty()) rights.insert(p.right);
-        pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                                   [&](const FramePair& p) { return rights.count(p.left) != 0; }),
-                    pairs.end());
-        if (pairs.empty())
-            throw InputError(who + ": no image files in '" + ldir.string() +
-                             "' (need left/ and right/ frames with equal names)");
     } else {
         for (const std::string& name : image_files(root, who)) {
             const std::string low = lower(name);
@@ -395,19 +385,23 @@ std::vector<FramePair> list_frame_pairs(const std::string& dir) {
                     "no right frame '" + first_candidate + "' for left frame '" + p.left + "'";
             pairs.push_back(std::move(p));
         }
-        // A file that is the right frame of another pair is not a left frame
-        // itself (e.g. "cleft_right_4.png", partner of "cleft_left_4.png").
-        std::set<std::string> rights;
-        for (const FramePair& p : pairs)
-            if (!p.right.empty()) rights.insert(p.right);
-        pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                                   [&](const FramePair& p) { return rights.count(p.left) != 0; }),
-                    pairs.end());
-        if (pairs.empty())
-            throw InputError(who +
-                             ": no frame pairs (need image files named like left_0000.png and "
-                             "right_0000.png, or left/ and right/ subfolders)");
     }
+    // A file that is the right frame of another pair is not a left frame
+    // itself (e.g. "cleft_right_4.png", partner of "cleft_left_4.png").
+    std::set<std::string> rights;
+    for (const FramePair& p : pairs)
+        if (!p.right.empty()) rights.insert(p.right);
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [&](const FramePair& p) { return rights.count(p.left) != 0; }),
+                pairs.end());
+    if (pairs.empty())
+        throw InputError(who + (subfolders ? ": no image files in '" + ldir.string() +
+                                                 "' (need left/ and right/ frames with equal "
+                                                 "names)"
+                                           : std::string(": no frame pairs (need image files "
+                                                         "named like left_0000.png and "
+                                                         "right_0000.png, or left/ and right/ "
+                                                         "subfolders)")));
     std::sort(pairs.begin(), pairs.end(), pair_before);
     return pairs;
 }
