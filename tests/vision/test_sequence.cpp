@@ -291,6 +291,15 @@ BOOST_AUTO_TEST_CASE(folders_without_pairs_are_errors) {
     BOOST_TEST(msg(d.path().string()).find("no frame pairs") != std::string::npos);
     BOOST_TEST(msg((d.path() / "missing").string()).find("not a folder") != std::string::npos);
     BOOST_TEST(msg((d.path() / "scene.png").string()).find("not a folder") != std::string::npos);
+    // left/ and right/ subfolders without images
+    const TempDir s("pairs_none_sub");
+    fs::create_directories(s.path() / "left");
+    fs::create_directories(s.path() / "right");
+    touch(s.path() / "right" / "img0.png");
+    const std::string m = msg(s.path().string());
+    BOOST_TEST(
+        m.find("no image files in '" + (s.path() / "left").string() + "'") != std::string::npos, m);
+    BOOST_TEST(m.find("left/ and right/ frames with equal names") != std::string::npos, m);
 }
 
 // ---------------------------------------------------------------------------
