@@ -88,4 +88,14 @@ std::string command_line(const std::vector<std::string>& argv) {
     return s;
 }
 
+std::string child_log_message(const std::string& log) {
+    std::ifstream in(log);
+    std::string line, last, msg;
+    while (std::getline(in, line)) {
+        if (line.rfind("imapsim: ", 0) == 0 && msg.empty()) msg = line.substr(9);
+        if (!line.empty()) last = line;
+    }
+    return msg.empty() ? last : msg;
+}
+
 }  // namespace imapsim

@@ -26,6 +26,11 @@ ChildResult run_self(const std::vector<std::string>& args);
 // `log` as an "imapsim: error: ..." line).
 pid_t spawn_logged(const std::vector<std::string>& argv, const std::string& log);
 
+// The line of a child's log that says what went wrong: its first
+// "imapsim: ..." line without that prefix (e.g. "error: machine fault: ..."),
+// else its last non-empty line, else "".
+std::string child_log_message(const std::string& log);
+
 // A word quoted for a POSIX shell (unchanged when it needs no quotes), and a
 // whole command line of such words (for "rerun with" hints in reports).
 std::string shell_quote(const std::string& s);

@@ -267,17 +267,6 @@ void finish(Job& j, int status) {
     }
 }
 
-// The "imapsim: error: ..." (or last non-empty) line of a child's log.
-std::string log_error(const fs::path& log) {
-    std::ifstream in(log);
-    std::string line, last, err;
-    while (std::getline(in, line)) {
-        if (line.rfind("imapsim: ", 0) == 0 && err.empty()) err = line.substr(9);
-        if (!line.empty()) last = line;
-    }
-    return err.empty() ? last : err;
-}
-
 std::string log_tail(const fs::path& log, size_t max_lines) {
     std::ifstream in(log);
     std::vector<std::string> lines;
@@ -319,7 +308,7 @@ Outcome judge(const Case& c, const std::vector<const Job*>& jobs) {
             fail(o, "crash",
                  m + (j->signal ? "killed by signal " + std::to_string(j->signal) + " (" +
                                       strsignal(j->signal) + ")"
-                                : "did not run: " + log_error(j->log)));
+                                : "did not run: " + child_log_message(j->log.string())));
             continue;
         }
         if (c.expect_error) {
@@ -328,7 +317,7 @@ Outcome judge(const Case& c, const std::vector<const Job*>& jobs) {
                      m + "expected an input error (exit 2), got exit " +
                          std::to_string(j->exit_code));
             } else {
-                const std::string e = log_error(j->log);
+                const std::string e = child_log_message(j->log.string());
                 if (!c.expect_message.empty() && e.find(c.expect_message) == std::string::npos)
                     fail(o, "expected-error",
                          m + "error message \"" + e + "\" lacks \"" + c.expect_message + "\"");
@@ -340,14 +329,17 @@ Outcome judge(const Case& c, const std::vector<const Job*>& jobs) {
             case kExitMismatch:
                 break;
             case kExitInput:
-                fail(o, "input-error", m + "input error (exit 2): " + log_error(j->log));
+                fail(o, "input-error",
+                     m + "input error (exit 2): " + child_log_message(j->log.string()));
                 continue;
             case kExitFault:
-                fail(o, "fault", m + "machine fault (exit 3): " + log_error(j->log));
+                fail(o, "fault",
+                     m + "machine fault (exit 3): " + child_log_message(j->log.string()));
                 continue;
             default:
                 fail(o, "error",
-                     m + "exit " + std::to_string(j->exit_code) + ": " + log_error(j->log));
+                     m + "exit " + std::to_string(j->exit_code) + ": " +
+                         child_log_message(j->log.string()));
                 continue;
         }
         if (!j->rep.is_object()) {

@@ -580,13 +580,7 @@ bool spawn(Job& j) {
 
 // The "imapsim: error: ..." (or last non-empty) line of a child's log.
 std::string log_error(const fs::path& log) {
-    std::ifstream in(log);
-    std::string line, last, err;
-    while (std::getline(in, line)) {
-        if (line.rfind("imapsim: ", 0) == 0 && err.empty()) err = line.substr(9);
-        if (!line.empty()) last = line;
-    }
-    std::string m = err.empty() ? last : err;
+    std::string m = child_log_message(log.string());
     if (m.rfind("error: ", 0) == 0) m = m.substr(7);
     return m.empty() ? "(no output)" : m;
 }
