@@ -5,6 +5,7 @@
 #include <set>
 
 #include "imap/vision/synth.hpp"
+#include "test_helpers.hpp"
 
 namespace v = imap::vision;
 
