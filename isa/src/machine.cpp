@@ -264,7 +264,8 @@ struct Exec {
             std::memmove(ep, lp, n);
         else
             std::memmove(lp, ep, n);
-        m.extra_ = static_cast<uint64_t>(len) * m.cfg_.costs.xfer_per_byte;
+        m.extra_ =
+            m.cfg_.costs.xfer_cycles(static_cast<uint64_t>(len), P) - m.cfg_.costs.xfer_setup;
     }
 
     // rxl: rd(p) = ra(p - k); rxr: rd(p) = ra(p + k) (indices mod P). Every
@@ -734,10 +735,17 @@ void Machine::load(const Program& prog) {
             case CostClass::Phase:
                 d.cost = 0;
                 break;
+            case CostClass::Shift:
+                // shli / shri by their immediate; shlv / shrv by up to 7 bits per lane
+                d.cost = k.shift_cycles(info.format == Format::Rsh ? x.imm : 7u);
+                break;
+            case CostClass::MinMax:
+                d.cost = uint64_t{k.alu} + k.minmax_extra;
+                break;
         }
         const CostClass cc = info.cost_class;
         if (cc == CostClass::Alu || cc == CostClass::Mem || cc == CostClass::Indirect ||
-            cc == CostClass::Ring)
+            cc == CostClass::Ring || cc == CostClass::Shift || cc == CostClass::MinMax)
             d.flags |= kFlagPeWork;
         code.push_back(d);
     }

@@ -53,6 +53,10 @@ const char* to_string(CostClass c) {
             return "xfer";
         case CostClass::Phase:
             return "phase";
+        case CostClass::Shift:
+            return "shift";
+        case CostClass::MinMax:
+            return "minmax";
     }
     return "?";
 }

@@ -318,9 +318,12 @@ void Array::continue_instruction() {
                 ring_.show_hop(static_cast<uint32_t>(k_ / ct.ring_hop + 1), writes_);
             break;
         case isa::CostClass::Xfer:
-            if (ct.xfer_per_byte > 0 && k_ >= ct.xfer_setup &&
-                (k_ - ct.xfer_setup) % ct.xfer_per_byte == 0) {
-                const int64_t b = static_cast<int64_t>((k_ - ct.xfer_setup) / ct.xfer_per_byte);
+            if (k_ >= ct.xfer_setup) {
+                // byte b of every PE has crossed the shared path after
+                // ceil((b + 1) * P / ext_bytes_per_cycle) cycles
+                const uint64_t P = static_cast<uint64_t>(m_.pes());
+                const int64_t b =
+                    static_cast<int64_t>((k_ - ct.xfer_setup) * ct.ext_bytes_per_cycle / P);
                 if (b < xlen_) {
                     if (w_.op == static_cast<uint8_t>(isa::Op::XLD))
                         strobe_row(false, static_cast<uint32_t>(xloc_ + b));

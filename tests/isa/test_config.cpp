@@ -64,12 +64,16 @@ BOOST_AUTO_TEST_CASE(set_by_name) {
     c.costs.set("ring_hop", 2);
     BOOST_CHECK_EQUAL(c.costs.ring_hop, 2u);
     BOOST_CHECK_EQUAL(c.costs.get("ring_hop"), 2u);
-    c.set("xfer_per_byte", "3");
+    c.set("ext_bytes_per_cycle", "3");
+    c.set("shift_bits", "1");
+    c.set("minmax_extra", "1");
     c.set("pes", "128");
     c.set("indirect", "off");
     c.set("clock_mhz", "33.3");
     c.set("ext_bytes", "0");
-    BOOST_CHECK_EQUAL(c.costs.xfer_per_byte, 3u);
+    BOOST_CHECK_EQUAL(c.costs.ext_bytes_per_cycle, 3u);
+    BOOST_CHECK_EQUAL(c.costs.shift_bits, 1u);
+    BOOST_CHECK_EQUAL(c.costs.minmax_extra, 1u);
     BOOST_CHECK_EQUAL(c.pes, 128);
     BOOST_CHECK(!c.indirect);
     BOOST_CHECK_CLOSE(c.clock_mhz, 33.3, 1e-9);

@@ -500,6 +500,39 @@ BOOST_AUTO_TEST_CASE(param_block) {
     BOOST_CHECK_EQUAL(m->cp(3), 0u);
 }
 
+// The variable-cost classes: shifter width, min/max select, shared external path.
+BOOST_AUTO_TEST_CASE(shifter_minmax_and_transfer_costs) {
+    auto cycles_of = [](const std::string& instr, MachineConfig cfg) {
+        cfg.ext_bytes = 64;
+        auto m = run("cli c2, #5\n" + instr + "\nhalt", cfg);
+        return m->cycles() - 2 * cfg.costs.cp;  // less the cli and the halt
+    };
+    MachineConfig barrel = small(4);
+    BOOST_CHECK_EQUAL(cycles_of("shli r1, r2, #5", barrel), 1u);
+    BOOST_CHECK_EQUAL(cycles_of("shrv r1, r2, r3", barrel), 1u);
+    MachineConfig serial = small(4);
+    serial.costs.shift_bits = 1;
+    BOOST_CHECK_EQUAL(cycles_of("shli r1, r2, #5", serial), 5u);
+    BOOST_CHECK_EQUAL(cycles_of("shri r1, r2, #0", serial), 1u);
+    BOOST_CHECK_EQUAL(cycles_of("shlv r1, r2, r3", serial), 7u);  // worst lane
+    BOOST_CHECK_EQUAL(cycles_of("rolc r1, r2", serial), 1u);      // one bit: the ALU
+    MachineConfig two = small(4);
+    two.costs.shift_bits = 2;
+    two.costs.alu = 3;
+    BOOST_CHECK_EQUAL(cycles_of("shli r1, r2, #5", two), 3u + 2u);  // alu + ceil(5/2) - 1
+    MachineConfig mm = small(4);
+    mm.costs.minmax_extra = 1;
+    BOOST_CHECK_EQUAL(cycles_of("min r1, r2, r3", mm), 2u);
+    BOOST_CHECK_EQUAL(cycles_of("maxi r1, r2, #7", mm), 2u);
+    BOOST_CHECK_EQUAL(cycles_of("add r1, r2, r3", mm), 1u);
+    MachineConfig x = small(4);
+    x.costs.ext_bytes_per_cycle = 3;
+    // 4 PEs x 5 bytes = 20 bytes at 3 per cycle = 7 cycles after the 8-cycle setup
+    BOOST_CHECK_EQUAL(cycles_of("xld [#0], ext[c2], c2", x), 8u + 7u);
+    x.costs.ext_bytes_per_cycle = 1000;
+    BOOST_CHECK_EQUAL(cycles_of("xst [#0], ext[c2], c2", x), 8u + 1u);
+}
+
 BOOST_AUTO_TEST_CASE(external_memory_block_transfer) {
     MachineConfig cfg = small(4);
     cfg.ext_bytes = 64;
@@ -526,7 +559,8 @@ BOOST_AUTO_TEST_CASE(external_memory_block_transfer) {
             BOOST_CHECK_EQUAL(m->mem_read(p, static_cast<uint32_t>(21 + i)), p * 16 + i);
             BOOST_CHECK_EQUAL(m->ext_read(p, static_cast<uint32_t>(40 + i)), p * 16 + i);
         }
-    BOOST_CHECK_EQUAL(m->stats().class_cycles[static_cast<int>(CostClass::Xfer)], 2u * (8 + 4));
+    // 4 PEs x 4 bytes = 16 bytes over the shared 8-byte/cycle path: 2 cycles after the setup
+    BOOST_CHECK_EQUAL(m->stats().class_cycles[static_cast<int>(CostClass::Xfer)], 2u * (8 + 2));
 
     auto fault_text = [&](const std::string& src, MachineConfig c) {
         try {

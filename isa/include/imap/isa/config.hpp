@@ -26,6 +26,7 @@ struct ParamInfo {
     std::string group;  // "machine" or "cost"
     std::string doc;
     bool assumption = false;  // not published for the real board: a modelling choice
+    bool faster = false;      // ... and one that makes the machine faster than the published facts
 };
 
 // Cycles per instruction class. Every instruction is charged exactly one
@@ -41,13 +42,18 @@ struct CostTable {
     uint32_t branch_taken = 1;    // added when a jump / branch / call / ret / loop is taken
     uint32_t video_line = 1;      // vin / vout (line already in the line buffer)
     uint32_t xfer_setup = 8;      // xld / xst fixed part
-    uint32_t xfer_per_byte = 1;   // xld / xst per byte per PE (all PEs in parallel)
+    uint32_t ext_bytes_per_cycle =
+        8;                      // external-memory path of the whole array (shared by all PEs)
+    uint32_t shift_bits = 7;    // bits the shifter moves per cycle (7 = barrel, 1 = serial)
+    uint32_t minmax_extra = 0;  // extra cycles of min / max over alu (0 = one-cycle select)
 
     struct Field {
         const char* name;
         uint32_t CostTable::*ptr;
         uint32_t min, max;
+        const char* unit;
         const char* doc;
+        bool faster;  // the default makes the machine faster than the published facts
     };
     static const std::vector<Field>& fields();
 
@@ -57,6 +63,16 @@ struct CostTable {
     uint32_t get(std::string_view name) const;
     void validate() const;
     std::vector<ParamInfo> list() const;
+
+    // Cycles of the variable-cost classes (docs/isa.md section 2.2).
+    // Shifter: shift by n bits (0..7; shlv / shrv count as 7).
+    uint64_t shift_cycles(unsigned n) const {
+        return uint64_t{alu} + (n == 0 ? 0 : (n + shift_bits - 1) / shift_bits - 1);
+    }
+    // xld / xst of len bytes per PE on P PEs: the whole array's bytes share one path.
+    uint64_t xfer_cycles(uint64_t len, uint64_t P) const {
+        return uint64_t{xfer_setup} + (len * P + ext_bytes_per_cycle - 1) / ext_bytes_per_cycle;
+    }
 };
 
 struct MachineConfig {

@@ -53,10 +53,12 @@ enum class CostClass : uint8_t {
     Status,    // costs.status
     Cp,        // costs.cp (+ costs.branch_taken when a branch is taken)
     Video,     // costs.video_line
-    Xfer,      // costs.xfer_setup + len * costs.xfer_per_byte
+    Xfer,      // costs.xfer_setup + ceil(len * P / costs.ext_bytes_per_cycle)
     Phase,     // 0 (pseudo-instruction)
+    Shift,     // costs.alu + ceil(n / costs.shift_bits) - 1 (n = bits shifted, 7 for shlv/shrv)
+    MinMax,    // costs.alu + costs.minmax_extra
 };
-inline constexpr int kCostClassCount = 10;
+inline constexpr int kCostClassCount = 12;
 const char* to_string(CostClass c);
 
 // X(ID, mnemonic, opcode, Format, CostClass, summary)
@@ -100,8 +102,8 @@ const char* to_string(CostClass c);
     X(AND, "and", 0x44, Rrr, Alu, "rd = ra & rb")                                              \
     X(OR, "or", 0x45, Rrr, Alu, "rd = ra | rb")                                                \
     X(XOR, "xor", 0x46, Rrr, Alu, "rd = ra ^ rb")                                              \
-    X(MIN, "min", 0x47, Rrr, Alu, "rd = min(ra, rb) (unsigned)")                               \
-    X(MAX, "max", 0x48, Rrr, Alu, "rd = max(ra, rb) (unsigned)")                               \
+    X(MIN, "min", 0x47, Rrr, MinMax, "rd = min(ra, rb) (unsigned)")                            \
+    X(MAX, "max", 0x48, Rrr, MinMax, "rd = max(ra, rb) (unsigned)")                            \
     /* PE ALU, register-immediate */                                                           \
     X(ADDI, "addi", 0x50, Rri8, Alu, "rd = ra + imm; C = carry")                               \
     X(ADCI, "adci", 0x51, Rri8, Alu, "rd = ra + imm + C; C = carry")                           \
@@ -110,8 +112,8 @@ const char* to_string(CostClass c);
     X(ANDI, "andi", 0x54, Rri8, Alu, "rd = ra & imm")                                          \
     X(ORI, "ori", 0x55, Rri8, Alu, "rd = ra | imm")                                            \
     X(XORI, "xori", 0x56, Rri8, Alu, "rd = ra ^ imm")                                          \
-    X(MINI, "mini", 0x57, Rri8, Alu, "rd = min(ra, imm)")                                      \
-    X(MAXI, "maxi", 0x58, Rri8, Alu, "rd = max(ra, imm)")                                      \
+    X(MINI, "mini", 0x57, Rri8, MinMax, "rd = min(ra, imm)")                                   \
+    X(MAXI, "maxi", 0x58, Rri8, MinMax, "rd = max(ra, imm)")                                   \
     /* PE moves and selects */                                                                 \
     X(MOV, "mov", 0x60, Rr, Alu, "rd = ra")                                                    \
     X(LI, "li", 0x61, Ri8, Alu, "rd = imm8")                                                   \
@@ -123,12 +125,12 @@ const char* to_string(CostClass c);
     X(CSEL, "csel", 0x67, Rrr, Alu, "rd = C ? ra : rb")                                        \
     X(TSEL, "tsel", 0x68, Rrr, Alu, "rd = T ? ra : rb")                                        \
     /* PE shifter */                                                                           \
-    X(SHLI, "shli", 0x70, Rsh, Alu, "rd = ra << n; C = last bit out (n > 0)")                  \
-    X(SHRI, "shri", 0x71, Rsh, Alu, "rd = ra >> n; C = last bit out (n > 0)")                  \
+    X(SHLI, "shli", 0x70, Rsh, Shift, "rd = ra << n; C = last bit out (n > 0)")                \
+    X(SHRI, "shri", 0x71, Rsh, Shift, "rd = ra >> n; C = last bit out (n > 0)")                \
     X(ROLC, "rolc", 0x72, Rr, Alu, "rd = ra << 1 | C; C = ra bit 7")                           \
     X(RORC, "rorc", 0x73, Rr, Alu, "rd = ra >> 1 | C << 7; C = ra bit 0")                      \
-    X(SHLV, "shlv", 0x74, Rrr, Alu, "rd = ra << (rb & 7); C as shli")                          \
-    X(SHRV, "shrv", 0x75, Rrr, Alu, "rd = ra >> (rb & 7); C as shri")                          \
+    X(SHLV, "shlv", 0x74, Rrr, Shift, "rd = ra << (rb & 7); C as shli")                        \
+    X(SHRV, "shrv", 0x75, Rrr, Shift, "rd = ra >> (rb & 7); C as shri")                        \
     /* PE comparator -> T */                                                                   \
     X(CEQ, "ceq", 0x80, Cmp, Alu, "T = ra == rb")                                              \
     X(CNE, "cne", 0x81, Cmp, Alu, "T = ra != rb")                                              \
