@@ -12,6 +12,9 @@
 // cannot run. Machine::set_simd_path picks the table.
 #include <cstring>
 #include <exception>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "exec.hpp"
 #include "imap/isa/encoding.hpp"
@@ -53,6 +56,116 @@ IMAP_INLINE uint8_t lane_mask(uint8_t m) {
             __VA_ARGS__                                     \
         }                                                   \
     }
+
+// reg[p] = M ? mem[idx[p]] : reg[p] for p < S (S a multiple of 64): the
+// gather of ldx. idx[p] + 3 stays inside the memory block (its slack), so
+// the vector paths may load a 32-bit word at every index.
+template <SimdPath Path, bool Full>
+void gather_rows(uint8_t* reg, const uint8_t* mem, const uint32_t* idx, const uint8_t* mk,
+                 size_t S);
+
+template <>
+inline void gather_rows<SimdPath::Generic, false>(uint8_t* reg, const uint8_t* mem,
+                                                  const uint32_t* idx, const uint8_t* mk,
+                                                  size_t S) {
+    for (size_t p = 0; p < S; ++p) reg[p] = blend(lane_mask(mk[p]), mem[idx[p]], reg[p]);
+}
+template <>
+inline void gather_rows<SimdPath::Generic, true>(uint8_t* reg, const uint8_t* mem,
+                                                 const uint32_t* idx, const uint8_t*, size_t S) {
+    for (size_t p = 0; p < S; ++p) reg[p] = mem[idx[p]];
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define IMAP_HAVE_X86_PATHS 1
+#define IMAP_TARGET_AVX2 __attribute__((target("avx2")))
+#define IMAP_TARGET_AVX512 \
+    __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,prefer-vector-width=512")))
+
+template <bool Full>
+IMAP_TARGET_AVX2 void gather_avx2(uint8_t* reg, const uint8_t* mem, const uint32_t* idx,
+                                  const uint8_t* mk, size_t S) {
+    // low byte of each 32-bit word to the low 4 bytes of each 128-bit half
+    const __m256i pick =
+        _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12,
+                         -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
+    const __m256i join = _mm256_setr_epi32(0, 4, 1, 1, 1, 1, 1, 1);
+    for (size_t p = 0; p < S; p += 8) {
+        const __m256i vi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(idx + p));
+        const __m256i v = _mm256_i32gather_epi32(reinterpret_cast<const int*>(mem), vi, 1);
+        const __m256i b = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(v, pick), join);
+        const __m128i x = _mm256_castsi256_si128(b);  // 8 bytes
+        if constexpr (Full) {
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(reg + p), x);
+        } else {
+            const __m128i old = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(reg + p));
+            const __m128i k = _mm_cmpgt_epi8(
+                _mm_loadl_epi64(reinterpret_cast<const __m128i*>(mk + p)), _mm_setzero_si128());
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(reg + p), _mm_blendv_epi8(old, x, k));
+        }
+    }
+}
+
+template <bool Full>
+IMAP_TARGET_AVX512 void gather_avx512(uint8_t* reg, const uint8_t* mem, const uint32_t* idx,
+                                      const uint8_t* mk, size_t S) {
+    for (size_t p = 0; p < S; p += 16) {
+        const __m512i vi = _mm512_loadu_si512(idx + p);
+        // (the masked forms with explicit zeros: GCC 12's plain forms start
+        // from an "undefined" value that -Wmaybe-uninitialized reports)
+        const __m512i v = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, vi, mem, 1);
+        const __m128i b = _mm512_maskz_cvtepi32_epi8(0xFFFF, v);  // low byte of each word
+        if constexpr (Full) {
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(reg + p), b);
+        } else {
+            const __m128i m = _mm_loadu_si128(reinterpret_cast<const __m128i*>(mk + p));
+            _mm_mask_storeu_epi8(reg + p, _mm_test_epi8_mask(m, m), b);
+        }
+    }
+}
+
+template <>
+inline void gather_rows<SimdPath::Avx2, false>(uint8_t* reg, const uint8_t* mem,
+                                               const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_avx2<false>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx2, true>(uint8_t* reg, const uint8_t* mem, const uint32_t* idx,
+                                              const uint8_t* mk, size_t S) {
+    gather_avx2<true>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx512, false>(uint8_t* reg, const uint8_t* mem,
+                                                 const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_avx512<false>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx512, true>(uint8_t* reg, const uint8_t* mem,
+                                                const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_avx512<true>(reg, mem, idx, mk, S);
+}
+#else
+template <>
+inline void gather_rows<SimdPath::Avx2, false>(uint8_t* reg, const uint8_t* mem,
+                                               const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_rows<SimdPath::Generic, false>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx2, true>(uint8_t* reg, const uint8_t* mem, const uint32_t* idx,
+                                              const uint8_t* mk, size_t S) {
+    gather_rows<SimdPath::Generic, true>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx512, false>(uint8_t* reg, const uint8_t* mem,
+                                                 const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_rows<SimdPath::Generic, false>(reg, mem, idx, mk, S);
+}
+template <>
+inline void gather_rows<SimdPath::Avx512, true>(uint8_t* reg, const uint8_t* mem,
+                                                const uint32_t* idx, const uint8_t* mk, size_t S) {
+    gather_rows<SimdPath::Generic, true>(reg, mem, idx, mk, S);
+}
+#endif
 
 }  // namespace
 
@@ -231,9 +344,13 @@ struct Exec {
 
     // Per-PE address: CP base + imm + (hi << 8 | lo). Only active PEs access
     // memory, and every active address is checked before anything is written.
-    // The 16-bit offsets of all lanes are formed and their range over the
-    // active lanes found in vector code; the accesses are one per PE.
-    template <bool Store, bool Full>
+    // First, in vector code over all lanes: the 16-bit offsets, their range
+    // over the active lanes (padding lanes of M are 0), and each lane's cell
+    // index (address * P + p; inactive lanes get a dummy cell in the slack
+    // after the memory). Then one access per lane: a gather on the vector
+    // paths for ldx, a plain loop for stx (every active lane stores into its
+    // own column, the inactive ones into the dummy cell).
+    template <bool Store, bool Full, SimdPath Path>
     IMAP_INLINE static void ldstx(Machine& m, const Decoded& d) {
         const size_t P = static_cast<size_t>(m.P_), S = m.S_;
         const uint8_t* L = m.lanes_;
@@ -242,40 +359,32 @@ struct Exec {
         const int64_t base = cpv(m, d.aux) + d.imm;
         const int64_t size = m.cfg_.mem_bytes;
         const uint8_t* mk = m.m_;
-        uint16_t* off = reinterpret_cast<uint16_t*>(m.scratch_);  // 2 * S bytes
+        uint32_t* idx = reinterpret_cast<uint32_t*>(m.scratch_);  // 4 * S bytes
+        const uint32_t* lane_no = m.lane_no_;
+        // Exact for every address in range: the memory is at most 1 GiB.
+        const uint32_t b32 = static_cast<uint32_t>(base), P32 = static_cast<uint32_t>(P);
+        const uint32_t dummy = m.cfg_.mem_bytes * P32;
         uint16_t mn = 0xFFFF, mx = 0;
         IMAP_LANES(S, p, {
             const uint16_t o = static_cast<uint16_t>((hi[p] << 8) | lo[p]);
-            off[p] = o;
             const uint16_t k = static_cast<uint16_t>(-mk[p]);
             // inactive lanes: min over 0xFFFF, max over 0
             const uint16_t omin = static_cast<uint16_t>(o | static_cast<uint16_t>(~k));
             const uint16_t omax = static_cast<uint16_t>(o & k);
             mn = omin < mn ? omin : mn;
             mx = omax > mx ? omax : mx;
+            const uint32_t cell = (b32 + o) * P32 + lane_no[p];
+            idx[p] = mk[p] ? cell : dummy;
         })
-        // Padding lanes of M are 0: they take no part in the range, with or
-        // without Full.
         const bool any = mn <= mx;
-        if (any && (base + mn < 0 || base + mx >= size)) ldx_fault(m, Store, lo, hi, base);
+        if (!any) return;
+        if (base + mn < 0 || base + mx >= size) ldx_fault(m, Store, lo, hi, base);
         uint8_t* mem = m.mem_;
         uint8_t* reg = m.lanes_ + d.d;
-        if (!any) return;
-        for (size_t p = 0; p < P; ++p) {
-            if constexpr (Full) {
-                const size_t cell = static_cast<size_t>(base + off[p]) * P + p;
-                if constexpr (Store)
-                    mem[cell] = reg[p];
-                else
-                    reg[p] = mem[cell];
-            } else {
-                if (!mk[p]) continue;
-                const size_t cell = static_cast<size_t>(base + off[p]) * P + p;
-                if constexpr (Store)
-                    mem[cell] = reg[p];
-                else
-                    reg[p] = mem[cell];
-            }
+        if constexpr (Store) {
+            for (size_t p = 0; p < P; ++p) mem[idx[p]] = reg[p];
+        } else {
+            gather_rows<Path, Full>(reg, mem, idx, mk, S);
         }
     }
 
@@ -395,7 +504,7 @@ struct Exec {
                 " instructions) without halt");
     }
 
-    template <Op O, bool Full>
+    template <Op O, bool Full, SimdPath Path>
     IMAP_INLINE static void exec(Machine& m, const Decoded& d) {
         constexpr Format F = format_of(O);
         [[maybe_unused]] const size_t P = static_cast<size_t>(m.P_);
@@ -430,7 +539,7 @@ struct Exec {
         } else if constexpr (O == Op::LD || O == Op::ST) {
             ldst<O == Op::ST, Full>(m, d);
         } else if constexpr (O == Op::LDX || O == Op::STX) {
-            ldstx<O == Op::STX, Full>(m, d);
+            ldstx<O == Op::STX, Full, Path>(m, d);
         } else if constexpr (O == Op::XLD || O == Op::XST) {
             xfer<O == Op::XST>(m, d);
         } else if constexpr (O == Op::RXL || O == Op::RXR) {
@@ -547,19 +656,17 @@ namespace {
 
 template <Op O, bool Full>
 void exec_generic(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full>(m, d);
+    Exec::exec<O, Full, SimdPath::Generic>(m, d);
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define IMAP_HAVE_X86_PATHS 1
+#ifdef IMAP_HAVE_X86_PATHS
 template <Op O, bool Full>
-__attribute__((target("avx2"))) void exec_avx2(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full>(m, d);
+IMAP_TARGET_AVX2 void exec_avx2(Machine& m, const Decoded& d) {
+    Exec::exec<O, Full, SimdPath::Avx2>(m, d);
 }
 template <Op O, bool Full>
-__attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,prefer-vector-width=512"))) void
-exec_avx512(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full>(m, d);
+IMAP_TARGET_AVX512 void exec_avx512(Machine& m, const Decoded& d) {
+    Exec::exec<O, Full, SimdPath::Avx512>(m, d);
 }
 #endif
 

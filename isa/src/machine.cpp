@@ -164,8 +164,10 @@ Machine::Machine(const MachineConfig& cfg) : cfg_(cfg) {
     NR_ = static_cast<size_t>(cfg_.pe_regs);
     const size_t P = static_cast<size_t>(P_), S = S_;
     const size_t depth = static_cast<size_t>(cfg_.mask_depth);
-    // regs, C, T, M, mask stack, 4 pidx rows, a zero row, 2 scratch rows
-    lanes_ = lane_block_.alloc((NR_ + 3 + depth + 4 + 1 + 2) * S, 64);
+    // regs, C, T, M, mask stack, 4 pidx rows, a zero row, 4 scratch rows
+    // (ldx / stx keep a 32-bit cell index per lane there), and the lane
+    // numbers as 32-bit words (4 rows)
+    lanes_ = lane_block_.alloc((NR_ + 3 + depth + 4 + 1 + 4 + 4) * S, 64);
     c_ = lanes_ + NR_ * S;
     t_ = c_ + S;
     m_ = t_ + S;
@@ -173,9 +175,13 @@ Machine::Machine(const MachineConfig& cfg) : cfg_(cfg) {
     pidx_ = mstack_ + depth * S;
     zero_ = pidx_ + 4 * S;
     scratch_ = zero_ + S;
+    lane_no_ = reinterpret_cast<uint32_t*>(scratch_ + 4 * S);
+    for (size_t p = 0; p < S; ++p) lane_no_[p] = static_cast<uint32_t>(p);
     for (size_t k = 0; k < 4; ++k)
         for (size_t p = 0; p < P; ++p) pidx_[k * S + p] = static_cast<uint8_t>(p >> (8 * k));
-    // Row loads over the padded lanes read up to S - P bytes past a row.
+    // Slack after the memory: row loads over the padded lanes read up to
+    // S - P bytes past a row; ldx / stx park inactive lanes on its first byte
+    // and the gathers load 4 bytes at a cell.
     mem_ = mem_block_.alloc(static_cast<size_t>(cfg_.mem_bytes) * P + kChunk, 64);
     ext_ = ext_block_.alloc(static_cast<size_t>(cfg_.ext_bytes) * P, 64);
     cstack_.assign(static_cast<size_t>(cfg_.call_depth), 0);
@@ -409,13 +415,11 @@ void Machine::load(const Program& prog) {
         if (last) {
             r.end = static_cast<uint32_t>(i);
             r.len = 1;
-            r.before_last = 0;
             r.pe_cycles = pe;
         } else {
             const RunInfo& nx = runs[i + 1];
             r.end = nx.end;
             r.len = nx.len + 1;
-            r.before_last = d.cost + nx.before_last;
             r.pe_cycles = pe + nx.pe_cycles;
         }
     }
@@ -530,12 +534,13 @@ inline void Machine::exec_one() {
         observer_->on_instruction(*this, TraceEvent{pc, prog_.code[pc], before, cycles_});
 }
 
-// The straight-line run from `start`: pc_ and cycles_ are exact before every
-// instruction (faults and the video port see them); the rest is booked once.
-// Only the last instruction can branch, halt, change the phase or the mask,
-// or add variable cycles, so the phase, the active PE count and the handler
-// variant are those at the start.
-void Machine::exec_run(uint32_t start) {
+// The straight-line run from `start`, or its prefix up to the cycle limit
+// (an instruction starts only below `limit`, as with single steps): pc_ and
+// cycles_ are exact before every instruction (faults and the video port see
+// them); the rest is booked once. Only the last instruction of a run can
+// branch, halt, change the phase or the mask, or add variable cycles, so the
+// phase, the active PE count and the handler variant are those at the start.
+void Machine::exec_run(uint32_t start, uint64_t limit) {
     const RunInfo& r = runs_[start];
     const uint64_t start_cycles = cycles_;
     const uint64_t active = static_cast<uint64_t>(active_);
@@ -553,9 +558,14 @@ void Machine::exec_run(uint32_t start) {
             if (pc == r.end) break;
             ++pc;
             ++d;
+            if (cycles_ >= limit) {  // stop before pc: book start .. pc - 1
+                book_partial_run(start, pc, start_cycles, active, phase);
+                pc_ = pc;
+                return;
+            }
         }
     } catch (...) {
-        account_partial_run(start, pc, start_cycles, active, phase);
+        book_partial_run(start, pc, start_cycles, active, phase);
         throw;
     }
     cycles_ += extra_;
@@ -569,21 +579,19 @@ void Machine::exec_run(uint32_t start) {
     pc_ = next_pc_;
 }
 
-// The instructions start .. faulting_pc - 1 completed; faulting_pc did not.
-void Machine::account_partial_run(uint32_t start, uint32_t faulting_pc, uint64_t start_cycles,
-                                  uint64_t active, uint32_t phase) {
+// The instructions start .. stop - 1 of a run completed (stop did not: a
+// fault, or the cycle limit); none of them added variable cycles.
+void Machine::book_partial_run(uint32_t start, uint32_t stop, uint64_t start_cycles,
+                               uint64_t active, uint32_t phase) {
     phase_cycles_[phase] += cycles_ - start_cycles;
-    if (faulting_pc == start) return;
+    if (stop == start) return;
     ++exec_diff_[start];
-    --exec_diff_[faulting_pc];
-    instructions_ += faulting_pc - start;
-    for (uint32_t pc = start; pc < faulting_pc; ++pc) {
-        const Decoded& d = code_[pc];
-        if (d.flags & kFlagPeWork) {
-            pe_cycles_ += d.cost;
-            active_lane_cycles_ += d.cost * active;
-        }
-    }
+    --exec_diff_[stop];
+    instructions_ += stop - start;
+    // suffix sums of the same run: start .. end minus stop .. end
+    const uint64_t pe = runs_[start].pe_cycles - runs_[stop].pe_cycles;
+    pe_cycles_ += pe;
+    active_lane_cycles_ += pe * active;
 }
 
 template <bool Traced>
@@ -594,14 +602,7 @@ RunResult Machine::run_loop(uint64_t max_cycles) {
     if constexpr (Traced) {
         while (!halted_ && cycles_ < limit) exec_one<true>();
     } else {
-        while (!halted_ && cycles_ < limit) {
-            // A whole run when every one of its instructions starts below the
-            // limit, as single steps would; else one instruction.
-            if (cycles_ + runs_[pc_].before_last < limit)
-                exec_run(pc_);
-            else
-                exec_one<false>();
-        }
+        while (!halted_ && cycles_ < limit) exec_run(pc_, limit);
     }
     if (!halted_ && cycles_ >= wd)
         fault("watchdog: no halt after " + std::to_string(cycles_) +

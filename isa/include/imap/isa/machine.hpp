@@ -267,10 +267,9 @@ class Machine {
     // video, the end sentinel). Only that last instruction can change the
     // PC flow, the phase, the mask or add variable cycles.
     struct RunInfo {
-        uint32_t end = 0;          // PC of the last instruction
-        uint32_t len = 0;          // instructions
-        uint64_t before_last = 0;  // fixed cycles of all but the last
-        uint64_t pe_cycles = 0;    // fixed cycles of the PE-work instructions
+        uint32_t end = 0;        // PC of the last instruction
+        uint32_t len = 0;        // instructions
+        uint64_t pe_cycles = 0;  // fixed cycles of its PE-work instructions
     };
     // A zero-initialised heap block (calloc: untouched pages stay unmapped).
     struct Block {
@@ -287,9 +286,9 @@ class Machine {
     RunResult run_loop(uint64_t max_cycles);
     template <bool Traced>
     void exec_one();
-    void exec_run(uint32_t start);
-    void account_partial_run(uint32_t start, uint32_t faulting_pc, uint64_t start_cycles,
-                             uint64_t active, uint32_t phase);
+    void exec_run(uint32_t start, uint64_t limit);
+    void book_partial_run(uint32_t start, uint32_t stop, uint64_t start_cycles, uint64_t active,
+                          uint32_t phase);
     [[noreturn]] void fault(const std::string& msg, int64_t pe = Fault::kNone,
                             int64_t address = Fault::kNone) const;
     void recount_active();
@@ -305,8 +304,9 @@ class Machine {
     size_t S_;  // lane row stride: P rounded up to a multiple of 64
     size_t NR_;
     Block lane_block_, mem_block_, ext_block_;
-    uint8_t* lanes_ = nullptr;  // regs | C | T | M | mask stack | pidx bytes | zero | scratch
+    uint8_t* lanes_ = nullptr;  // regs | C | T | M | mask stack | pidx | zero | scratch | lane_no
     uint8_t *c_, *t_, *m_, *mstack_, *pidx_, *zero_, *scratch_;
+    uint32_t* lane_no_;                      // lane_no_[p] = p
     uint8_t* mem_ = nullptr;                 // mem_bytes * P (+ 64 bytes of slack for row loads)
     uint8_t* ext_ = nullptr;                 // ext_bytes * P
     size_t ext_lo_ = SIZE_MAX, ext_hi_ = 0;  // bytes of ext_ written since the last reset
