@@ -26,6 +26,7 @@ namespace imap::isa {
 namespace {
 
 using detail::kChunk;
+using detail::kFixedLanes;
 using detail::kFlagNoHigh;
 
 #define IMAP_INLINE [[gnu::always_inline]] inline
@@ -504,8 +505,13 @@ struct Exec {
                 " instructions) without halt");
     }
 
-    template <Op O, bool Full, SimdPath Path>
+    // Fixed: the machine has 256 lanes (S = 256, the board's size): the lane
+    // loops get a constant trip count and unroll.
+    template <Op O, bool Full, SimdPath Path, bool Fixed>
     IMAP_INLINE static void exec(Machine& m, const Decoded& d) {
+        if constexpr (Fixed) {
+            if (m.S_ != kFixedLanes) __builtin_unreachable();
+        }
         constexpr Format F = format_of(O);
         [[maybe_unused]] const size_t P = static_cast<size_t>(m.P_);
         [[maybe_unused]] const size_t S = m.S_;
@@ -654,27 +660,30 @@ struct Exec {
 
 namespace {
 
-template <Op O, bool Full>
+template <Op O, bool Full, bool Fixed>
 void exec_generic(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full, SimdPath::Generic>(m, d);
+    Exec::exec<O, Full, SimdPath::Generic, Fixed>(m, d);
 }
 
 #ifdef IMAP_HAVE_X86_PATHS
-template <Op O, bool Full>
+template <Op O, bool Full, bool Fixed>
 IMAP_TARGET_AVX2 void exec_avx2(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full, SimdPath::Avx2>(m, d);
+    Exec::exec<O, Full, SimdPath::Avx2, Fixed>(m, d);
 }
-template <Op O, bool Full>
+template <Op O, bool Full, bool Fixed>
 IMAP_TARGET_AVX512 void exec_avx512(Machine& m, const Decoded& d) {
-    Exec::exec<O, Full, SimdPath::Avx512>(m, d);
+    Exec::exec<O, Full, SimdPath::Avx512, Fixed>(m, d);
 }
 #endif
 
-Handler generic_of(uint8_t code, bool full) {
+Handler generic_of(uint8_t code, bool full, bool fixed) {
     switch (code) {
-#define IMAP_ISA_X(id, mn, code, fmt, cls, doc) \
-    case code:                                  \
-        return full ? &exec_generic<Op::id, true> : &exec_generic<Op::id, false>;
+#define IMAP_ISA_X(id, mn, code, fmt, cls, doc)                    \
+    case code:                                                     \
+        return fixed ? (full ? &exec_generic<Op::id, true, true>   \
+                             : &exec_generic<Op::id, false, true>) \
+                     : (full ? &exec_generic<Op::id, true, false>  \
+                             : &exec_generic<Op::id, false, false>);
         IMAP_ISA_OPCODES(IMAP_ISA_X)
 #undef IMAP_ISA_X
         default:
@@ -683,22 +692,27 @@ Handler generic_of(uint8_t code, bool full) {
 }
 
 #ifdef IMAP_HAVE_X86_PATHS
-Handler avx2_of(uint8_t code, bool full) {
+Handler avx2_of(uint8_t code, bool full, bool fixed) {
     switch (code) {
-#define IMAP_ISA_X(id, mn, code, fmt, cls, doc) \
-    case code:                                  \
-        return full ? &exec_avx2<Op::id, true> : &exec_avx2<Op::id, false>;
+#define IMAP_ISA_X(id, mn, code, fmt, cls, doc)                                                \
+    case code:                                                                                 \
+        return fixed                                                                           \
+                   ? (full ? &exec_avx2<Op::id, true, true> : &exec_avx2<Op::id, false, true>) \
+                   : (full ? &exec_avx2<Op::id, true, false> : &exec_avx2<Op::id, false, false>);
         IMAP_ISA_OPCODES(IMAP_ISA_X)
 #undef IMAP_ISA_X
         default:
             return nullptr;
     }
 }
-Handler avx512_of(uint8_t code, bool full) {
+Handler avx512_of(uint8_t code, bool full, bool fixed) {
     switch (code) {
-#define IMAP_ISA_X(id, mn, code, fmt, cls, doc) \
-    case code:                                  \
-        return full ? &exec_avx512<Op::id, true> : &exec_avx512<Op::id, false>;
+#define IMAP_ISA_X(id, mn, code, fmt, cls, doc)                                                    \
+    case code:                                                                                     \
+        return fixed                                                                               \
+                   ? (full ? &exec_avx512<Op::id, true, true> : &exec_avx512<Op::id, false, true>) \
+                   : (full ? &exec_avx512<Op::id, true, false>                                     \
+                           : &exec_avx512<Op::id, false, false>);
         IMAP_ISA_OPCODES(IMAP_ISA_X)
 #undef IMAP_ISA_X
         default:
@@ -711,13 +725,13 @@ Handler avx512_of(uint8_t code, bool full) {
 
 namespace detail {
 
-Handler handler_of(SimdPath path, uint8_t code, bool full) {
+Handler handler_of(SimdPath path, uint8_t code, bool full, bool fixed) {
 #ifdef IMAP_HAVE_X86_PATHS
-    if (path == SimdPath::Avx512) return avx512_of(code, full);
-    if (path == SimdPath::Avx2) return avx2_of(code, full);
+    if (path == SimdPath::Avx512) return avx512_of(code, full, fixed);
+    if (path == SimdPath::Avx2) return avx2_of(code, full, fixed);
 #endif
     (void)path;
-    return generic_of(code, full);
+    return generic_of(code, full, fixed);
 }
 
 Handler end_of_program_handler() {

@@ -210,8 +210,9 @@ void Machine::set_simd_path(SimdPath p) {
 void Machine::bind_handlers() {
     for (size_t i = 0; i + 1 < code_.size(); ++i) {
         Decoded& d = code_[i];
-        d.fn[0] = detail::handler_of(simd_, d.op, false);
-        d.fn[1] = detail::handler_of(simd_, d.op, true);
+        const bool fixed = S_ == detail::kFixedLanes;
+        d.fn[0] = detail::handler_of(simd_, d.op, false, fixed);
+        d.fn[1] = detail::handler_of(simd_, d.op, true, fixed);
     }
     Decoded& end = code_.back();
     end.fn[0] = end.fn[1] = detail::end_of_program_handler();
