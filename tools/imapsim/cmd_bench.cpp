@@ -210,7 +210,9 @@ Subcommand register_bench(CLI::App& app) {
                 std::printf("  RTL                     not built in this binary\n");
             }
             std::printf("  golden wall             %10.3f ms   (median)\n", golden_ms);
-            std::printf("  TLM wall / golden wall  %10.2f\n", tlm_wall * 1e3 / golden_ms);
+            std::printf(
+                "  TLM wall / golden wall  %10.2f      (one cold frame against a warm golden)\n",
+                tlm_wall * 1e3 / golden_ms);
             if (st.available) {
                 std::printf(
                     "  stream, %d frames, per frame, median over frames; median (min .. max) "
