@@ -194,36 +194,55 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     }
     f.ext_needed = ext;
 
-    // After the forward pass: the output line, then the spilled columns
-    // reloaded (xld writes every PE, so free for every kind).
+    // After the forward pass: the output line (free of every on-chip column),
+    // then each spilled column reloaded just before the backtrack reaches it,
+    // into memory free of the map and of the on-chip columns still ahead
+    // (xld writes every PE, so free for every kind).
     for (int p = 0; p < 2; ++p)
         for (int a = 0; a < mem; ++a) fm.avail[p][a] = a < f.kblk + kKBlockSize ? kNever : 0;
     const std::vector<int> all = {0, 1};
     f.map = fm.find(f.N, all, 0);
     if (f.map < 0) return false;
-    for (int p = 0; p < 2; ++p)
-        for (int x = f.map; x < f.map + f.N; ++x) fm.used[p][x] = 1;
-    for (const Transfer& s : f.spills) {
-        const int a = fm.find(s.len, all, 0);
-        if (a < 0) return false;
+    int top = std::max(f.preg, f.map + f.N);
+    for (const Transfer& t : f.spills) top = std::max(top, t.local + t.len);
+    if (spill > 0) {
+        FreeMap rm = fm;  // used: on-chip columns; the map is added below
         for (int p = 0; p < 2; ++p)
-            for (int x = a; x < a + s.len; ++x) fm.used[p][x] = 1;
-        f.reloads.push_back({a, s.ext, s.len, -1});
-        for (int p = 0; p < f.kinds; ++p)
-            for (int k = 1; k <= f.kmax; ++k) {
-                PointerColumn& c = f.ptr[p][k];
-                if (c.ext >= s.ext && c.ext < s.ext + s.len) c.addr = a + (c.ext - s.ext);
+            for (int x = f.map; x < f.map + f.N; ++x) rm.used[p][x] = 1;
+        // column -> its on-chip bytes per kind (to release them as the backtrack passes)
+        for (int k = f.kmax; k >= 1; --k) {
+            if (k > spill) {
+                for (int p = 0; p < f.kinds; ++p) {
+                    const PointerColumn& c = f.ptr[p][k];
+                    if (c.bytes == 0 || c.ext >= 0) continue;
+                    for (int x = c.addr; x < c.addr + c.bytes; ++x) rm.used[p][x] = 0;
+                }
+                continue;
             }
+            int size = 0, ext_addr = -1;
+            for (int p = 0; p < f.kinds; ++p) {
+                const PointerColumn& c = f.ptr[p][k];
+                if (c.bytes == 0) continue;
+                ext_addr = c.ext;
+            }
+            for (const ForwardPass& ps : f.passes)
+                if (ps.k == k) size = std::max(size, ps.bytes);
+            if (ext_addr < 0 || size == 0) continue;
+            const int a = rm.find(size, all, 0);
+            if (a < 0) return false;
+            f.reloads.push_back({a, ext_addr, size, k});
+            for (int p = 0; p < f.kinds; ++p)
+                if (f.ptr[p][k].bytes > 0) f.ptr[p][k].addr = a;
+            top = std::max(top, a + size);
+        }
     }
     // Highest local address in use by the DP.
-    int top = f.preg;
     for (int p = 0; p < 2; ++p)
         for (int a = mem - 1; a >= 0; --a)
             if (fm.used[p][a]) {
                 top = std::max(top, a + 1);
                 break;
             }
-    for (const Transfer& s : f.spills) top = std::max(top, s.local + s.len);
     f.mem_needed = top;
     return true;
 }
@@ -301,15 +320,24 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
            << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
-    int spill = 0;
-    while (!place_pointers(f, mem, spill)) {
-        if (++spill > f.kmax) {
+    // The fewest spilled columns (the first ones) that let the rest fit.
+    if (!place_pointers(f, mem, 0)) {
+        int lo = 1, hi = f.kmax;
+        if (!place_pointers(f, mem, hi)) {
             std::ostringstream os;
-            os << "does not fit: the pointer columns, the output line and the reloaded "
-                  "columns need more than the "
+            os << "does not fit: the line buffers, costs, output line and one pointer column "
+                  "need more than the "
                << mem << " bytes of local memory per PE (mem_bytes)";
             throw FirmwareError(os.str());
         }
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (place_pointers(f, mem, mid))
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        place_pointers(f, mem, lo);
     }
     if (f.ext_needed > int64_t{cfg.ext_bytes}) {
         std::ostringstream os;
@@ -654,12 +682,12 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
         }
     }
     os << "        FEND\n.endm\n";
-    os << ".macro PLAN_RELOAD\n";
-    for (const Transfer& t : f.reloads)
-        os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
-    os << ".endm\n";
+    os << ".macro PLAN_RELOAD\n.endm\n";
     os << ".macro PLAN_BACK\n";
     for (int k = f.kmax; k >= 1; --k) {
+        for (const Transfer& t : f.reloads)
+            if (t.after == k)
+                os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
         int addr = -1, maxb = 0, base[2] = {0, 0}, act[2] = {0, 0};
         for (int p = 0; p < f.kinds; ++p) {
             const PointerColumn& c = f.ptr[p][k];
@@ -718,8 +746,9 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         if (fp.rl.modular) {
             // one displacement per class mod P (and of one parity in bidir mode)
             if (span == 2) {
-                smin = -fp.P / 2 + 2;
-                smax = fp.P / 2;
+                smin = -fp.P / 2 + 1;
+                if (smin % 2 != 0) ++smin;  // the items' displacements are even (BP = 0)
+                smax = smin + fp.P - 2;
             } else {
                 smin = -fp.P / 2 + 1;
                 smax = fp.P / 2;
