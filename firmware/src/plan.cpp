@@ -276,7 +276,53 @@ uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t
     return static_cast<uint8_t>((bits & 1) ? 2 : (bits >> 1));
 }
 
+namespace {
+ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
+                              bool tiny);
+}
+
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
+    return plan_forward_impl(p, N, cfg, false);
+}
+
+namespace {
+// Every pointer table in the external memory (three rotating slots of
+// ext_table bytes), the backtrack voting from three reloaded columns
+// (docs/firmware.md, section 4: arrays of 2 to 5 PEs).
+bool place_tiny(ForwardPlan& f, int mem) {
+    if (!place_pointers(f, mem, f.kmax)) return false;
+    // place_pointers reloaded each column into the lowest free bytes: now
+    // one buffer for the own column and two for the neighbours' columns.
+    int size = 0;
+    for (const ForwardPass& ps : f.passes) size = std::max(size, ps.bytes);
+    f.reloads.clear();
+    const int lo = f.kblk + kKBlockSize;
+    auto overlaps_map = [&](int a, int n) { return a < f.map + f.N && f.map < a + n; };
+    int a = lo, bufs[3], got = 0;
+    while (got < 3 && a + size <= mem) {
+        if (overlaps_map(a, size)) {
+            a = f.map + f.N;
+            continue;
+        }
+        bufs[got++] = a;
+        a += size;
+    }
+    if (got < 3) return false;
+    f.tiny_buf[0] = bufs[0];
+    f.tiny_buf[1] = bufs[1];
+    f.tiny_buf[2] = bufs[2];
+    for (int p = 0; p < f.kinds; ++p)
+        for (int k = 1; k <= f.kmax; ++k)
+            if (f.ptr[p][k].bytes > 0) f.ptr[p][k].addr = bufs[0];
+    f.ext_table = static_cast<int>(f.ext_needed);
+    f.ext_needed = 3 * int64_t{f.ext_table};
+    f.mem_needed = std::max(f.mem_needed, bufs[2] + size);
+    f.tiny = true;
+    return true;
+}
+
+ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
+                              bool tiny) {
     golden::validate_for_width(p, N);
     check_range(p);
     ForwardPlan f;
@@ -320,8 +366,16 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
            << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
-    // The fewest spilled columns (the first ones) that let the rest fit.
-    if (!place_pointers(f, mem, 0)) {
+    if (tiny) {
+        if (!place_tiny(f, mem)) {
+            std::ostringstream os;
+            os << "does not fit: the line buffers, costs, output line and three pointer "
+                  "columns need more than the "
+               << mem << " bytes of local memory per PE (mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+    } else if (!place_pointers(f, mem, 0)) {
+        // The fewest spilled columns (the first ones) that let the rest fit.
         int lo = 1, hi = f.kmax;
         if (!place_pointers(f, mem, hi)) {
             std::ostringstream os;
@@ -348,6 +402,7 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     }
     return f;
 }
+}  // namespace
 
 // ---- frame --------------------------------------------------------------------------------
 
@@ -489,17 +544,23 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
-    fp.f = plan_forward(p, roi.w, cfg);  // range and DP memory checks
     const bool bidir = p.mode == golden::Mode::Bidir;
     const int span = bidir ? 2 : 1;
     fp.lpb = std::min(fp.P / span, 255);
+    // Too few lines per batch for the vote across batches: one line at a
+    // time, every pointer table kept in the external memory.
+    const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
+    fp.f = plan_forward_impl(p, roi.w, cfg, tiny);  // range and DP memory checks
+    if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {
         std::ostringstream os;
         os << "too few PEs: bidir mode needs 2 PEs per line, have " << fp.P;
         throw FirmwareError(os.str());
     }
     const int H = roi.h;
-    if (H <= fp.lpb) {
+    if (tiny) {
+        for (int y = 0; y < H; ++y) fp.batches.push_back({y, 1, 0, 1});
+    } else if (H <= fp.lpb) {
         fp.batches.push_back({0, H, 0, H});
     } else {
         const bool overlap = p.vote;
@@ -518,7 +579,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
             fp.batches.push_back({first, last - first, o - first, oe - o});
         }
     }
-    if (static_cast<int>(fp.batches.size()) > kMaxBatches) {
+    if (!tiny && static_cast<int>(fp.batches.size()) > kMaxBatches) {
         std::ostringstream os;
         os << "ROI of " << H << " lines needs " << fp.batches.size() << " batches on " << fp.P
            << " PEs; the firmware's batch table holds " << kMaxBatches
@@ -611,6 +672,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
     std::vector<std::pair<int, uint32_t>> v;
     v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));
+    if (fp.f.tiny) return v;  // one line per batch: the CP counts lines
     for (size_t b = 0; b < fp.batches.size(); ++b) {
         const Batch& t = fp.batches[b];
         const int base = 1 + 4 * static_cast<int>(b);
@@ -658,6 +720,11 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "XD", f.xd);
     equ(os, "KPP", f.kpp);
     equ(os, "MAP", f.map);
+    equ(os, "TINY", f.tiny ? 1 : 0);
+    equ(os, "TTABLE", f.ext_table);
+    equ(os, "TBUF0", f.tiny_buf[0]);
+    equ(os, "TBUF1", f.tiny_buf[1]);
+    equ(os, "TBUF2", f.tiny_buf[2]);
     // the left wavefront's last output position + 1 (the merge band ends there)
     int band = 0;
     if (f.bidir) {
@@ -685,6 +752,14 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
     os << ".macro PLAN_RELOAD\n.endm\n";
     os << ".macro PLAN_BACK\n";
     for (int k = f.kmax; k >= 1; --k) {
+        if (f.tiny) {
+            int size = 0, ext_addr = -1;
+            for (int p = 0; p < f.kinds; ++p)
+                if (f.ptr[p][k].bytes > 0) ext_addr = f.ptr[p][k].ext;
+            for (const ForwardPass& ps : f.passes)
+                if (ps.k == k) size = std::max(size, ps.bytes);
+            if (ext_addr >= 0) os << "        TRELOAD " << ext_addr << ", " << size << "\n";
+        }
         for (const Transfer& t : f.reloads)
             if (t.after == k)
                 os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";

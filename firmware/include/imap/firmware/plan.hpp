@@ -86,6 +86,12 @@ struct ForwardPlan {
     int map = 0;                          // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
     int64_t ext_needed = 0;
+    // 2 to 5 PEs with the vote across batches: one line per batch, pointer
+    // tables in three rotating external slots of ext_table bytes, the
+    // backtrack's own and neighbour columns reloaded into tiny_buf.
+    bool tiny = false;
+    int ext_table = 0;
+    int tiny_buf[3] = {0, 0, 0};
 
     int rp_addr(int i) const { return rb - i; }
     int lp_addr(int i) const { return rb + 1 + i; }
