@@ -27,6 +27,16 @@ isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {
     return im;
 }
 
+void set_relayout_figures(const FramePlan& plan, FrameResult& r) {
+    r.relayout_in = r.relayout_out = 0;
+    for (const auto& [name, cyc] : r.phases) {
+        if (name == "relayout_in") r.relayout_in = cyc;
+        if (name == "relayout_out") r.relayout_out = cyc;
+    }
+    r.relayout_bound_in = plan.rl.bound_in;
+    r.relayout_bound_out = plan.rl.bound_out;
+}
+
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
                            const golden::ImageView& left, const golden::ImageView& right,
                            const isa::MachineConfig& cfg, isa::Observer* observer) {
@@ -50,6 +60,7 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     r.map.width = plan.roi.w;
     r.map.height = plan.roi.h;
     r.map.data = video.output[0].pixels;
+    set_relayout_figures(plan, r);
     return r;
 }
 

@@ -53,19 +53,19 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
         }
 }
 
-// The emitted constants: an assembler include (.equ lines) with, in its
-// header, how to assemble it with dp.s and how to exec the result.
+// The emitted firmware source: the planner's constants and per-column plan
+// macros, ending with the .include of dp.s, after a header that says how to
+// assemble it and how to exec the result.
 std::string defines_text(const ModelRun& run, const std::string& source,
                          const isa::MachineConfig& cfg, const std::string& emit_program,
                          const std::string& inc_path) {
     std::string t;
-    t += "; Constants of the DP firmware for one imapsim run (docs/firmware.md, \"Assembling\n";
-    t += "; the firmware by hand\"): " + source + "\n";
-    t += ";\n; Re-assemble: a source that holds the two lines\n";
-    t += ";     .include \"" + std::filesystem::absolute(inc_path).lexically_normal().string() +
-         "\"\n";
-    t += ";     .include \"" + fw::frame_source() + "\"\n";
-    t += "; assembles to the program that ran (imapsim asm FRAME.s -o FRAME.bin).\n";
+    t += "; Constants and plan of the DP firmware for one imapsim run (docs/firmware.md,\n";
+    t += "; \"Assembling the firmware by hand\"): " + source + "\n";
+    t += ";\n; Re-assemble (this file includes dp.s at its end):\n";
+    t += ";     imapsim asm " + std::filesystem::absolute(inc_path).lexically_normal().string() +
+         " -o FRAME.bin\n";
+    t += "; gives the program that ran.\n";
     std::string params;
     for (const auto& [i, val] : fw::param_block(run.plan))
         params += " --param " + std::to_string(i) + "=" + std::to_string(val);
@@ -80,8 +80,7 @@ std::string defines_text(const ModelRun& run, const std::string& source,
          " --left LEFT --right RIGHT" + params + " --out-size " + std::to_string(run.plan.roi.w) +
          "x" + std::to_string(run.plan.roi.h) + machine + " --out-left MAP.png\n";
     t += "; Param block (the batch table):" + params + "\n";
-    for (const auto& [name, value] : run.defines)
-        t += ".equ " + name + " " + std::to_string(value) + "\n";
+    t += run.source;
     return t;
 }
 
@@ -113,7 +112,8 @@ Subcommand register_run(CLI::App& app) {
     sub->add_option("--emit-program", o->emit_program,
                     "write the program that ran here (IMAPFW01, for disasm / exec)");
     sub->add_option("--emit-defines", o->emit_defines,
-                    "write its assembler constants here (.equ lines, for asm; docs/firmware.md)");
+                    "write its source here: the planner's constants and plan macros, including "
+                    "dp.s (for asm; docs/firmware.md)");
     sub->add_option("--model", o->model, "model to run: " + model_names())->capture_default_str();
     sub->add_option("--seed", o->seed, "synthetic scene seed")->capture_default_str();
     sub->add_option("--size", o->size, "synthetic scene size WxH")->capture_default_str();
@@ -303,7 +303,7 @@ Subcommand register_run(CLI::App& app) {
                 v::write_text_atomic(
                     o->emit_defines,
                     defines_text(run, source, cfg, o->emit_program, o->emit_defines));
-                std::printf("  assembler constants (%zu) -> %s\n", run.defines.size(),
+                std::printf("  firmware source (constants and plan) -> %s\n",
                             o->emit_defines.c_str());
             }
             if (!o->report.empty()) {

@@ -287,7 +287,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     const isa::Program prog = fw::assemble_frame(p, run.plan);
     run.program_words = prog.code.size();
     run.program = prog;
-    run.defines = fw::frame_defines(p, run.plan);
+    run.source = fw::frame_source(p, run.plan);
     WaveSession session(waves ? *waves : WaveFlags{}, cfg, prog, model == "rtl");
     isa::Observer* observer = session.observer();
     auto finish_waves = [&](uint64_t end_cycle) { session.finish(end_cycle); };
@@ -354,6 +354,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            fw::set_relayout_figures(run.plan, r);
             finish_waves(r.cycles);
             return run;
         }
@@ -375,6 +376,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            fw::set_relayout_figures(run.plan, r);
             finish_waves(r.cycles);
             return run;
         }
@@ -437,6 +439,11 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
                             ? 0.0
                             : static_cast<double>(r.stats.active_lane_cycles) /
                                   (static_cast<double>(cfg.pes) * static_cast<double>(r.cycles));
+    std::printf("  re-layout: in %llu cycles (ring lower bound %lld), out %llu (bound %lld)\n",
+                static_cast<unsigned long long>(r.relayout_in),
+                static_cast<long long>(r.relayout_bound_in),
+                static_cast<unsigned long long>(r.relayout_out),
+                static_cast<long long>(r.relayout_bound_out));
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
     const std::string faster = faster_assumptions_text(cfg);
     if (!faster.empty())
@@ -470,6 +477,10 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     nlohmann::json ph = nlohmann::json::object();
     for (const auto& [name, cyc] : r.phases) ph[name] = cyc;
     j["phases"] = ph;
+    j["relayout"] = {{"in_cycles", r.relayout_in},
+                     {"in_lower_bound", r.relayout_bound_in},
+                     {"out_cycles", r.relayout_out},
+                     {"out_lower_bound", r.relayout_bound_out}};
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));

@@ -48,7 +48,7 @@ struct ModelRun {
     imap::firmware::FramePlan plan;
     size_t program_words = 0;
     imap::isa::Program program;              // the program that ran
-    std::map<std::string, int64_t> defines;  // its assembler constants
+    std::string source;  // its generated source (constants, plan macros, .include of dp.s)
     imap::firmware::FrameResult result;
 };
 
