@@ -89,9 +89,11 @@ OptionCost estimate_options(const Params& p, int N) {
         c.items.push_back(fmt("census", node, pixel, c.pixels + 16));
     }
     if (rx > 0) {
-        // store the new column's pixel cost, load the 2 rx older ones, add.
+        // the pixel costs of the 2 rx previous columns live in a rolling
+        // buffer: load them, add them to the new one, store the new one over
+        // the oldest (read just before).
         const double node = cb + 2.0 * rx * cb + 2.0 * rx * hb;
-        const int64_t bytes = int64_t{2 * rx + 1} * D * cb;
+        const int64_t bytes = int64_t{2 * rx} * D * cb;
         c.per_node += node;
         c.local_bytes += bytes;
         c.items.push_back(fmt("agg-rx", node, 0, bytes));
@@ -138,8 +140,12 @@ const std::vector<Variant>& tradeoff_variants() {
         add("joint-agg", "paper costs summed over 3x3, joint, Wo = Wd = 500", p);
         p = quality;
         p.agg_rx = p.agg_ry = 0;
-        p.Wo = p.Wd = 17;
-        add("joint-census", "quality without the aggregation, Wo = Wd = 17", p);
+        p.Wo = p.Wd = 16;
+        add("joint-census", "quality without the aggregation, Wo = Wd = 16", p);
+        p = quality;
+        p.agg_rx = p.agg_ry = 1;
+        p.Wo = p.Wd = 144;
+        add("quality-3x3", "quality with a 3x3 window, Wo = Wd = 144", p);
         p = quality;
         p.ad_max = 255;
         add("quality-notrunc", "quality, ad-max 255", p);
@@ -150,10 +156,6 @@ const std::vector<Variant>& tradeoff_variants() {
         p = quality;
         p.census = 1;
         add("quality-census1", "quality, census 1 (3x3)", p);
-        p = quality;
-        p.agg_rx = p.agg_ry = 2;
-        p.Wo = p.Wd = 417;
-        add("quality-agg5", "quality, 5x5 window, Wo = Wd = 417", p);
         p = quality;
         p.vote = false;
         add("quality-novote", "quality, vote off", p);

@@ -167,13 +167,13 @@ Params preset(const std::string& name) {
     p.km = 1;
     p.kb = 0;
     p.gb = 0;
-    p.ad_max = 32;
+    p.ad_max = 16;
     p.kc = 4;
     p.census = 2;
-    p.agg_rx = 1;
-    p.agg_ry = 1;
-    p.Wo = 150;
-    p.Wd = 150;
+    p.agg_rx = 2;
+    p.agg_ry = 2;
+    p.Wo = 400;
+    p.Wd = 400;
     return p;
 }
 

@@ -154,7 +154,7 @@ BOOST_FIXTURE_TEST_CASE(presets_and_overrides, Fixture) {
     const auto jq = read_json(p("q.json")).at(0).at("params");
     BOOST_TEST(jq.at("mode") == "joint");
     BOOST_TEST(jq.at("kc") == 4);
-    BOOST_TEST(jq.at("agg_rx") == 1);
+    BOOST_TEST(jq.at("agg_rx") == 2);
     BOOST_TEST(jq.at("km") == 1);
     const Result o =
         run(ev + "--preset quality --mode single --kc 2 --Wo 99 --Wd 99 --json " + p("o.json"));
@@ -163,7 +163,7 @@ BOOST_FIXTURE_TEST_CASE(presets_and_overrides, Fixture) {
     BOOST_TEST(jo.at("mode") == "single");
     BOOST_TEST(jo.at("kc") == 2);
     BOOST_TEST(jo.at("Wo") == 99);
-    BOOST_TEST(jo.at("ad_max") == 32);  // still the preset's
+    BOOST_TEST(jo.at("ad_max") == 16);  // still the preset's
     // The paper preset is today's default: the same map as no preset, no A.9 keys.
     BOOST_REQUIRE(run(ev + "--preset paper --json " + p("a.json")).code == 0);
     BOOST_REQUIRE(run(ev + "--json " + p("b.json")).code == 0);

@@ -561,7 +561,7 @@ BOOST_AUTO_TEST_CASE(presets) {
     const g::Params q = g::preset("quality");
     BOOST_TEST(g::uses_options(q));
     BOOST_CHECK_NO_THROW(g::validate_for_width(q, 128));
-    BOOST_TEST(g::options_string(q) == "--mode joint --ad-max 32 --kc 4 --agg-rx 1 --agg-ry 1");
+    BOOST_TEST(g::options_string(q) == "--mode joint --ad-max 16 --kc 4 --agg-rx 2 --agg-ry 2");
     BOOST_CHECK_THROW(g::preset("fast"), g::ParamError);
     // joint alone is an option; a census radius without kc is not
     g::Params p;
@@ -578,14 +578,17 @@ BOOST_AUTO_TEST_CASE(cost_estimate_arithmetic) {
     BOOST_TEST(g::resolve_seed_col(q, 128) == 48);
     const g::OptionCost c = g::estimate_options(q, 128);
     BOOST_TEST(c.nodes == 79 * 64);
-    // pixel cost <= 32 + 4 * 8 = 64 (1 byte), row sum <= 192 (1 byte), window
-    // <= 576 (2 bytes): ad-max 1 + census (1 + 1 + 2 + 4 + 1 + kc 4 = one
-    // shift, 1 + add 1) 11 + agg-rx (1 + 2 + 2) 5 + agg-ry (4 + 2 + 4) 10.
-    BOOST_TEST(c.per_node == 27.0);
-    BOOST_TEST(c.pixels == (79 + 1) + (79 + 64 + 1) + 4);
+    // pixel cost <= 16 + 4 * 8 = 48 (1 byte), row sum <= 240 (1 byte), window
+    // <= 1200 (2 bytes): ad-max 1 + census (ld 1 + xor 1 + nibbles 2 + 2 ldx 4
+    // + add 1 + kc = one shift 1 + add into the pixel cost 1) 11 + agg-rx (st 1
+    // + 4 ld + 4 add) 9 + agg-ry 2 x (ring 2 x 2 hops + 2 selects + 2 two-byte
+    // adds = 4 + 2 + 4) 20.
+    BOOST_TEST(c.per_node == 1.0 + 11 + 9 + 20);
+    BOOST_TEST(c.pixels == (79 + 1) + (79 + 64 + 1) + 8);
     BOOST_TEST(c.per_pixel == 2.0 * 2 * 2 + 4 + 25);
     BOOST_TEST(c.per_batch == 14 * 64 + 20);
-    BOOST_TEST(c.cycles == 79 * 64 * 27 + 228 * 37 + 916);
+    BOOST_TEST(c.local_bytes == 232 + 16 + 4 * 64);
+    BOOST_TEST(c.cycles == 79 * 64 * 41 + 232 * 37 + 916);
     BOOST_TEST(g::estimate_options(g::preset("paper"), 128).cycles == 0);
     const g::Params pp = g::paper_part(q);
     BOOST_TEST(!g::uses_options(pp));

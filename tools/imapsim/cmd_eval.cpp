@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_common.hpp"
 #include "imap/firmware/plan.hpp"
@@ -26,7 +28,7 @@ using nlohmann::json;
 
 namespace {
 struct EvalOptions {
-    std::string scene, all, matcher, json, plot;
+    std::string scene, all, matcher, json, plot, param_sets;
     bool tradeoff = false;
     double delta = 1.0;
     double gt_scale = 0;
@@ -250,6 +252,112 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
     return static_cast<int>(kExitOk);
 }
 
+// One parameter set of --param-sets: the text of its line and its parameters.
+struct ParamSet {
+    std::string text;
+    int line = 0;
+    g::Params p;
+    bool explicit_D = false;
+};
+
+// Reads --param-sets FILE: one set of algorithm flags per line ('#' starts a
+// comment line), each parsed like the command line's; errors name the line.
+std::vector<ParamSet> read_param_sets(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw UserError("--param-sets '" + path + "': cannot read the file");
+    std::vector<ParamSet> sets;
+    std::string text;
+    int line = 0;
+    while (std::getline(in, text)) {
+        ++line;
+        const size_t b = text.find_first_not_of(" \t\r");
+        if (b == std::string::npos || text[b] == '#') continue;
+        std::istringstream is(text);
+        std::vector<std::string> args;
+        for (std::string w; is >> w;) args.push_back(w);
+        std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+        CLI::App parser("param set");
+        AlgoFlags f;
+        add_algo_flags(&parser, f);
+        const std::string where = "--param-sets " + path + ":" + std::to_string(line) + ": ";
+        try {
+            parser.parse(args);
+        } catch (const CLI::ParseError& e) {
+            throw UserError(where + e.what());
+        }
+        if (!f.roi.empty() || f.fill || (f.given.count("--frame") && f.frame != "left"))
+            throw UserError(where + "--roi, --fill and --frame are not accepted here");
+        ParamSet ps;
+        ps.text = text.substr(b);
+        ps.line = line;
+        g::Roi roi;
+        bool has_roi = false;
+        try {
+            ps.p = parse_algo_flags(f, &roi, &has_roi);
+        } catch (const UserError& e) {
+            throw UserError(where + e.what());
+        }
+        ps.explicit_D = !f.D.empty();
+        sets.push_back(ps);
+    }
+    if (sets.empty()) throw UserError("--param-sets '" + path + "': no parameter sets in it");
+    return sets;
+}
+
+// imapsim eval --param-sets: the golden with every set on every scene, one
+// line per set (mean and per-scene nonocc); the scenes are loaded once.
+int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
+                   const std::vector<v::Scene>& scenes) {
+    char delta_txt[32];
+    std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
+    std::printf("%5s %7s %7s %7s", "set", "nonocc", "all", "disc");
+    for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
+    std::printf("  flags (mean %s %%; per-scene nonocc)\n", delta_txt);
+    json arr = json::array();
+    for (const ParamSet& ps : sets) {
+        v::BadScores mean;
+        json per = json::object();
+        std::string cols;
+        for (const auto& sc : scenes) {
+            g::Params q = ps.p;
+            if (!ps.explicit_D) q.D = sc.ndisp;
+            q.frame = g::Frame::Left;
+            double secs = 0;
+            cv::Mat disp;
+            try {
+                disp = v::run_matcher("golden", sc, q, &secs);
+            } catch (const g::ParamError& e) {
+                throw UserError("--param-sets line " + std::to_string(ps.line) + ", scene '" +
+                                sc.name + "': " + e.what());
+            }
+            const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
+            const double n = static_cast<double>(scenes.size());
+            mean.nonocc += b.nonocc / n;
+            mean.all += b.all / n;
+            mean.disc += b.disc / n;
+            per[sc.name] = {{"nonocc", b.nonocc}, {"all", b.all}, {"disc", b.disc}};
+            char c[32];
+            std::snprintf(c, sizeof c, " %8.2f", b.nonocc);
+            cols += c;
+        }
+        std::printf("%5d %7.2f %7.2f %7.2f%s  %s\n", ps.line, mean.nonocc, mean.all, mean.disc,
+                    cols.c_str(), ps.text.c_str());
+        std::fflush(stdout);
+        json prm = algo_params_json(ps.p);
+        if (!ps.explicit_D) prm.erase("D");
+        arr.push_back({{"line", ps.line},
+                       {"flags", ps.text},
+                       {"params", prm},
+                       {"nonocc", mean.nonocc},
+                       {"all", mean.all},
+                       {"disc", mean.disc},
+                       {"delta", o.delta},
+                       {"scenes", per}});
+    }
+    if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
+    return static_cast<int>(kExitOk);
+}
+
 }  // namespace
 
 Subcommand register_eval(CLI::App& app) {
@@ -277,6 +385,10 @@ Subcommand register_eval(CLI::App& app) {
     sub->add_option("--plot", o->plot,
                     "with --tradeoff: PNG plot of the mean nonocc bad-delta against the modeled "
                     "time");
+    sub->add_option("--param-sets", o->param_sets,
+                    "score the golden with every parameter set of this file (one line of "
+                    "algorithm flags each, e.g. '--preset quality --kc 3'); the scenes are "
+                    "loaded once (tuning sweeps: scripts/tune-quality.sh)");
     add_algo_flags(sub, o->algo);
     sub->footer(
         "--D defaults to the scene's ndisp (scenes.json). Scenes are scored over the whole "
@@ -303,6 +415,17 @@ Subcommand register_eval(CLI::App& app) {
                                 " is not supported by eval: scoring uses the left frame");
             const bool explicit_D = !o->algo.D.empty();
             if (!o->plot.empty() && !o->tradeoff) throw UserError("--plot needs --tradeoff");
+            std::vector<ParamSet> sets;
+            if (!o->param_sets.empty()) {
+                if (o->tradeoff) throw UserError("give --tradeoff or --param-sets, not both");
+                if (!o->matcher.empty() && o->matcher != "golden")
+                    throw UserError("--param-sets scores the golden only: drop --matcher");
+                for (const std::string& f : o->algo.given)
+                    throw UserError("--param-sets takes the algorithm flags from its file: drop " +
+                                    f);
+                if (o->algo.fill) throw UserError("--param-sets: drop --fill (it is implied)");
+                sets = read_param_sets(o->param_sets);
+            }
             if (o->tradeoff) {
                 if (!o->matcher.empty())
                     throw UserError("--tradeoff scores its own list of matchers: drop --matcher");
@@ -336,6 +459,7 @@ Subcommand register_eval(CLI::App& app) {
                 scenes.push_back(v::load_scene(d, o->gt_scale, explicit_D ? p.D : 0));
 
             if (o->tradeoff) return run_tradeoff(*o, scenes, explicit_D ? p.D : 0);
+            if (!sets.empty()) return run_param_sets(*o, sets, scenes);
 
             int wscene = 5;
             for (const auto& sc : scenes)
