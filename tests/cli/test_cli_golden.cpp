@@ -242,6 +242,38 @@ BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
     BOOST_TEST(!fs::exists(p("x.png")));
 }
 
+BOOST_FIXTURE_TEST_CASE(eval_param_sets, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 4 --size 96x32 --out-dir " + p("scene")).code == 0);
+    {
+        std::ofstream f(p("sets.txt"));
+        f << "# two sets\n--preset paper\n\n--preset quality --kc 2 --Wo 300 --Wd 300\n";
+    }
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const Result r = run(ev + "--param-sets " + p("sets.txt") + " --json " + p("s.json"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const auto rows = read_json(p("s.json"));
+    BOOST_REQUIRE(rows.size() == 2u);
+    BOOST_TEST(rows[0].at("line") == 2);
+    BOOST_TEST(rows[1].at("line") == 4);
+    BOOST_TEST(rows[1].at("params").at("kc") == 2);
+    BOOST_TEST(rows[1].at("params").at("Wo") == 300);
+    // the same score as a plain eval with those flags
+    BOOST_REQUIRE(run(ev + "--matcher golden --preset paper --json " + p("e.json")).code == 0);
+    BOOST_TEST(read_json(p("e.json")).at(0).at("nonocc") == rows[0].at("nonocc"));
+    {
+        std::ofstream f(p("bad.txt"));
+        f << "--preset quality\n--kc many\n";
+    }
+    const Result b = run(ev + "--param-sets " + p("bad.txt") + " --json " + p("b.json"));
+    BOOST_TEST(b.code == 2);
+    BOOST_TEST(b.out.find("bad.txt:2: invalid value 'many' for --kc") != std::string::npos, b.out);
+    BOOST_TEST(!fs::exists(p("b.json")));
+    const Result c = run(ev + "--param-sets " + p("sets.txt") + " --km 2");
+    BOOST_TEST(c.code == 2);
+    BOOST_TEST(c.out.find("drop --km") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(main_job_without_arguments) {
     const Result r = run("");
     BOOST_TEST_INFO(r.out);

@@ -421,8 +421,10 @@ Subcommand register_eval(CLI::App& app) {
                 if (!o->matcher.empty() && o->matcher != "golden")
                     throw UserError("--param-sets scores the golden only: drop --matcher");
                 for (const std::string& f : o->algo.given)
-                    throw UserError("--param-sets takes the algorithm flags from its file: drop " +
-                                    f);
+                    if (f != "--D")
+                        throw UserError(
+                            "--param-sets takes the algorithm flags from its file: drop " + f +
+                            " (only --D, the default of the sets without one, is accepted)");
                 if (o->algo.fill) throw UserError("--param-sets: drop --fill (it is implied)");
                 sets = read_param_sets(o->param_sets);
             }
