@@ -165,17 +165,71 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     return fp;
 }
 
+namespace {
+
+// The constants of the forward pass (every program that includes
+// dp_forward.inc) and of the algorithm (FRAME, VOTE).
+std::map<std::string, int64_t> forward_defines(const golden::Params& p, const ForwardPlan& f) {
+    return {{"MODE", f.bidir ? 1 : 0},
+            {"N", f.N},
+            {"D", f.D},
+            {"S", f.s},
+            {"DS", f.ds},
+            {"KMAX", f.kmax},
+            {"DQ", f.dq},
+            {"KM", p.km},
+            {"KB", p.kb},
+            {"GB", p.gb},
+            {"WO", p.Wo},
+            {"WD", p.Wd},
+            {"IMGR", f.imgr},
+            {"IMGL", f.imgl},
+            {"COST0", f.c0},
+            {"COST1", f.c1},
+            {"COST2", f.c2},
+            {"PBUF", f.pbuf},
+            {"VBUF", f.vbuf},
+            {"MAP", f.map},
+            {"K_BASE", f.kbase},
+            {"FRAME", p.frame == golden::Frame::Cyclopean ? 0
+                      : p.frame == golden::Frame::Left    ? 1
+                                                          : 2},
+            {"VOTE", p.vote ? 1 : 0}};
+}
+
+}  // namespace
+
+std::string frame_source() {
+    return firmware_dir() + "/dp.s";
+}
+
+std::map<std::string, int64_t> frame_defines(const golden::Params& p, const FramePlan& fp) {
+    std::map<std::string, int64_t> d = forward_defines(p, fp.f);
+    const std::map<std::string, int64_t> frame = {
+        {"P", fp.P},       {"HROI", fp.roi.h}, {"X0", fp.roi.x0},
+        {"Y0", fp.roi.y0}, {"NSEG", fp.nseg},  {"INL", fp.inl},
+        {"INR", fp.inr},   {"OUT", fp.out},    {"SPLIT_IN", fp.split_in ? 1 : 0}};
+    for (const auto& [k, v] : frame) d[k] = v;
+    return d;
+}
+
 isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
-    return assemble(p, fp.f, "dp.s",
-                    {{"P", fp.P},
-                     {"HROI", fp.roi.h},
-                     {"X0", fp.roi.x0},
-                     {"Y0", fp.roi.y0},
-                     {"NSEG", fp.nseg},
-                     {"INL", fp.inl},
-                     {"INR", fp.inr},
-                     {"OUT", fp.out},
-                     {"SPLIT_IN", fp.split_in ? 1 : 0}});
+    isa::AsmOptions o;
+    o.defines = frame_defines(p, fp);
+    return isa::assemble_file(frame_source(), o);
+}
+
+const std::vector<WaveGroup>& wave_groups() {
+    // dp_forward.inc (DP_NODE): the 24-bit costs of the node being
+    // computed, three byte registers each: r1-r3 M, then the best of M and
+    // D; r4-r6 Q = E(k-1, j+1) once loaded (temporaries before); r7-r9 the
+    // running E(k, j) of the O chain (docs/firmware.md, section 2).
+    static const std::vector<WaveGroup> g = {
+        {"fwd_best", "forward", {1, 2, 3}},
+        {"fwd_q", "forward", {4, 5, 6}},
+        {"fwd_run", "forward", {7, 8, 9}},
+    };
+    return g;
 }
 
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
@@ -199,31 +253,7 @@ isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& f) {
 isa::Program assemble(const golden::Params& p, const ForwardPlan& f, const std::string& file,
                       const std::map<std::string, int64_t>& extra) {
     isa::AsmOptions o;
-    o.defines = {{"MODE", f.bidir ? 1 : 0},
-                 {"N", f.N},
-                 {"D", f.D},
-                 {"S", f.s},
-                 {"DS", f.ds},
-                 {"KMAX", f.kmax},
-                 {"DQ", f.dq},
-                 {"KM", p.km},
-                 {"KB", p.kb},
-                 {"GB", p.gb},
-                 {"WO", p.Wo},
-                 {"WD", p.Wd},
-                 {"IMGR", f.imgr},
-                 {"IMGL", f.imgl},
-                 {"COST0", f.c0},
-                 {"COST1", f.c1},
-                 {"COST2", f.c2},
-                 {"PBUF", f.pbuf},
-                 {"VBUF", f.vbuf},
-                 {"MAP", f.map},
-                 {"K_BASE", f.kbase},
-                 {"FRAME", p.frame == golden::Frame::Cyclopean ? 0
-                           : p.frame == golden::Frame::Left    ? 1
-                                                               : 2},
-                 {"VOTE", p.vote ? 1 : 0}};
+    o.defines = forward_defines(p, f);
     for (const auto& [k, v] : extra) o.defines[k] = v;
     return isa::assemble_file(firmware_dir() + "/" + file, o);
 }

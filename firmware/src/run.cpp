@@ -44,7 +44,7 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     FrameResult r;
     r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.cycles = m.cycles();
-    r.modeled_ms = cfg.seconds(r.cycles) * 1e3;
+    r.modeled_ms = cfg.milliseconds(r.cycles);
     r.phases = phase_table(m);
     r.stats = m.stats();
     r.map.width = plan.roi.w;

@@ -515,7 +515,7 @@ RtlRunResult RtlSystem::result() const {
     RtlRunResult r;
     r.halted = m.halted();
     r.cycles = m.cycles();
-    r.modeled_ms = m.config().seconds(m.cycles()) * 1e3;
+    r.modeled_ms = m.config().milliseconds(m.cycles());
     r.phase_cycles = m.phase_cycles();
     r.stats = m.stats();
     r.clock_edges = array.edges();

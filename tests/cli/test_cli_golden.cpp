@@ -12,6 +12,7 @@
 #include "cli_test_util.hpp"
 
 #include "imap/golden/stereo.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/synth.hpp"
 
@@ -280,4 +281,28 @@ BOOST_AUTO_TEST_CASE(main_job_without_arguments) {
     BOOST_TEST(r.code == 0);
     BOOST_TEST(r.out.find("synthetic scene") != std::string::npos);
     BOOST_TEST(r.out.find("bad-1") != std::string::npos);
+}
+
+// Issue 13 item 5: --out-color writes the map colour-mapped: each pixel the
+// colour of the raw map's value, occluded (255) white.
+BOOST_FIXTURE_TEST_CASE(colour_mapped_map, Fixture) {
+    const Result r =
+        run("golden " + pair() + " --D 16 --out " + p("raw.png") + " --out-color " + p("col.png"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const cv::Mat raw = cv::imread(p("raw.png"), cv::IMREAD_UNCHANGED);
+    const cv::Mat col = cv::imread(p("col.png"), cv::IMREAD_UNCHANGED);
+    BOOST_REQUIRE(col.type() == CV_8UC3);
+    BOOST_REQUIRE(col.size() == raw.size());
+    int occluded = 0;
+    for (int y = 0; y < raw.rows; ++y)
+        for (int x = 0; x < raw.cols; ++x) {
+            const int d = raw.at<uint8_t>(y, x);
+            occluded += d == 255;
+            BOOST_TEST((col.at<cv::Vec3b>(y, x) == imap::vision::disparity_colour(d, 16)));
+        }
+    BOOST_TEST(occluded > 0);  // the unfilled map has occlusions to show
+    BOOST_TEST(
+        run("golden " + pair() + " --out " + p("a.png") + " --out-color " + p("c.txt")).code == 2);
+    BOOST_TEST(!fs::exists(p("a.png")));
 }

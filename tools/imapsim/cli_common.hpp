@@ -10,6 +10,7 @@
 #include <string>
 
 #include "imap/golden/params.hpp"
+#include "imap/isa/config.hpp"
 
 namespace imapsim {
 
@@ -68,6 +69,18 @@ imap::golden::Params parse_algo_flags(const AlgoFlags& f, imap::golden::Roi* roi
 // The algorithm parameters as a JSON object (reports).
 nlohmann::json algo_params_json(const imap::golden::Params& p);
 
+// One machine parameter's value as JSON: a number (integer or real), or a
+// boolean for an on/off switch (isa::ParamInfo::value is text).
+nlohmann::json param_value_json(const imap::isa::ParamInfo& p);
+// Every machine and cost parameter of `cfg`, name -> value (param_value_json).
+nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg);
+// Per parameter: {"assumption": bool, "faster": bool, "unit", "group"}
+// (docs/isa.md 2.2: an assumption is [A], one that makes the machine faster
+// than the published facts [A+]).
+nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg);
+// The [A+] parameters as "name value unit" items joined by ", ".
+std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg);
+
 // Strict integer parse of a flag value; error names the flag and the range.
 long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
                          long long hi);
@@ -92,6 +105,13 @@ void create_output_dir(const std::string& flag, const std::string& dir);
 
 // The extension of `path` in lower case, with its dot (".avi"); "" if none.
 std::string lower_extension(const std::string& path);
+
+// The folder a file named `path` goes to: its parent, or "." for a bare
+// file name ("n1.avi"), so that it can be made absolute or compared.
+std::string folder_of(const std::string& path);
+// True when the file `path` lies directly in folder `dir` (both taken
+// relative to the current folder; "n1.json" is in ".", "out/x" in "out/").
+bool file_in_folder(const std::string& path, const std::string& dir);
 
 // Each subcommand registers itself on the app and returns a runner that is
 // called if the subcommand was selected. The runner returns the exit code.

@@ -85,10 +85,31 @@ inline constexpr int kMaxBatches = 62;  // batch table in the param block
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg);
 
-// Assembles dp.s for a frame plan.
+// The source file of the full firmware (dp.s in firmware_dir()).
+std::string frame_source();
+
+// The constants (NAME -> value, given to the assembler as -D NAME=VALUE)
+// with which assemble_frame assembles frame_source() for a plan: what a
+// user needs to re-assemble the firmware by hand (imapsim run
+// --emit-defines, docs/firmware.md).
+std::map<std::string, int64_t> frame_defines(const golden::Params& p, const FramePlan& plan);
+
+// Assembles frame_source() with frame_defines(p, plan).
 isa::Program assemble_frame(const golden::Params& p, const FramePlan& plan);
 
-// The param block words of a frame plan (index, value).
+// The param block words of a frame plan (index, value): set before the run
+// (imapsim exec --param INDEX=VALUE).
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& plan);
+
+// Registers that the firmware uses together as one multi-byte value (a
+// cost), low byte first: the waves' GTKWave view shows each group as one
+// decimal vector (docs/waves.md). `phase` names the phase where the group
+// holds that value (the registers are reused elsewhere).
+struct WaveGroup {
+    std::string name;       // e.g. "fwd_run"
+    std::string phase;      // e.g. "forward"
+    std::vector<int> regs;  // PE registers, low byte first
+};
+const std::vector<WaveGroup>& wave_groups();
 
 }  // namespace imap::firmware
