@@ -537,6 +537,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
+    if (golden::uses_options(p))  // SPEC A.9: golden only until the firmware implements them
+        throw FirmwareError("the DP firmware implements SPEC A.1-A.7 only, not the A.9 options " +
+                            golden::options_string(p) + " (use --preset paper)");
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -37,9 +38,15 @@ class UserError : public std::runtime_error {
 };
 
 // Raw text of the algorithm flags, parsed after CLI11 so that errors name
-// the flag, the value and the allowed range.
+// the flag, the value and the allowed range. `preset` (paper or quality,
+// empty = paper) gives the starting values; every flag given overrides its
+// preset value (an empty string = not given; mode, seed-col, seed-disp,
+// vote and frame count as given when on the command line (`given`) or
+// different from their paper default).
 struct AlgoFlags {
+    std::string preset;
     std::string D, km, kb, gb, Wo, Wd;
+    std::string dissim, ad_max, kc, census, agg_rx, agg_ry;  // SPEC A.9 options
     std::string mode = "bidir";
     std::string seed_col = "balanced";
     std::string seed_disp = "free";
@@ -47,10 +54,12 @@ struct AlgoFlags {
     std::string roi;  // empty = whole image
     std::string frame = "cyc";
     bool fill = false;
+    std::set<std::string> given;  // flags seen on the command line (filled by CLI11)
 };
 
-// Adds --D --km --kb --gb --Wo --Wd --mode --seed-col --seed-disp --vote
-// --roi --frame --fill to a subcommand, with defaults shown in --help.
+// Adds --preset --D --km --kb --gb --Wo --Wd --mode --seed-col --seed-disp
+// --vote --roi --frame --fill and the SPEC A.9 options --dissim --ad-max --kc
+// --census --agg-rx --agg-ry to a subcommand, with defaults shown in --help.
 void add_algo_flags(CLI::App* app, AlgoFlags& f);
 
 // Converts the flags to golden parameters (throws UserError naming the flag).
