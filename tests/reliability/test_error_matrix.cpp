@@ -451,7 +451,7 @@ ERROR_ROW(run_negative_km, kInput, RUN " --km -1", "--km", "-1", "0..1000000")
 ERROR_ROW(golden_negative_D, kInput, GOLDEN_ARGS " --D -3", "--D", "-3", "1..255")
 ERROR_ROW(run_non_numeric_D, kInput, RUN_ON("core") " --D abc", "--D", "abc", "1..255")
 ERROR_ROW(golden_non_numeric_gb, kInput, GOLDEN " --gb 12x", "--gb", "12x", "0..255")
-ERROR_ROW(run_bad_mode, kInput, RUN " --mode triple", "--mode", "triple", "single or bidir")
+ERROR_ROW(run_bad_mode, kInput, RUN " --mode triple", "--mode", "triple", "single, bidir or joint")
 BOOST_AUTO_TEST_SUITE_END()
 
 // ---- machine configuration and memory fit ---------------------------------------------
