@@ -104,5 +104,6 @@ Subcommand register_bench(CLI::App& app);
 Subcommand register_stream(CLI::App& app);
 Subcommand register_sweep(CLI::App& app);
 Subcommand register_table1(CLI::App& app);
+Subcommand register_run_task(CLI::App& app);
 
 }  // namespace imapsim
