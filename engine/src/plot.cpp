@@ -125,7 +125,7 @@ std::string script_text(const Figure& f, const std::string& data_name,
       << "#   gnuplot -e \"outfile='plot.svg'\" THIS.gp   (.png: pngcairo, .svg: svg)\n"
       << "if (!exists(\"datafile\")) datafile = " << quoted(data_name) << "\n"
       << "if (!exists(\"outfile\")) outfile = " << quoted(out_name) << "\n"
-      << "if (strlen(outfile) > 4 && outfile[strlen(outfile)-3:strlen(outfile)] eq \"svg\") {\n"
+      << "if (strlen(outfile) > 4 && outfile[strlen(outfile)-3:] eq \".svg\") {\n"
       << "    set terminal svg size " << f.width << "," << f.height
       << " dynamic font \"sans,11\" background rgb \"white\"\n"
       << "} else {\n"
@@ -134,7 +134,8 @@ std::string script_text(const Figure& f, const std::string& data_name,
       << "}\n"
       << "set output outfile\n"
       << "set termoption noenhanced\n"
-      << "set encoding utf8\n";
+      << "set encoding utf8\n"
+      << "set style textbox opaque noborder\n";
     o << "set title " << quoted(f.subtitle.empty() ? f.title : f.title + "\n" + f.subtitle) << "\n";
     o << "set xlabel " << quoted(f.xlabel) << "\n";
     o << "set ylabel " << quoted(f.ylabel) << "\n";
@@ -156,8 +157,11 @@ std::string script_text(const Figure& f, const std::string& data_name,
             o << (i ? ", " : "") << quoted(num(f.xticks[i])) << " " << num(f.xticks[i]);
         o << ")\n";
     }
-    o << (f.series.size() > 5 ? "set key outside right top vertical\n"
-                              : "set key top right box opaque samplen 2 width 1 height 0.5\n");
+    const bool labelled = std::any_of(f.series.begin(), f.series.end(),
+                                      [](const Series& s) { return !s.label.empty(); });
+    o << (!labelled             ? "unset key\n"
+          : f.series.size() > 5 ? "set key outside right top vertical\n"
+                                : "set key top right box opaque samplen 2 width 1 height 0.5\n");
     int tag = 1;
     for (const HLine& h : f.hlines) {
         if (f.logy && h.y <= 0) continue;
@@ -173,8 +177,8 @@ std::string script_text(const Figure& f, const std::string& data_name,
     for (const Annotation& a : f.annotations) {
         o << "set label " << tag++ << " " << quoted(a.text) << " at first " << num(a.x)
           << ", first " << num(a.y)
-          << " left point pt 6 ps 3 lw 2 lc rgb \"#d62728\" offset 1.5,1.5 textcolor rgb "
-             "\"#b01010\"\n";
+          << " left front boxed point pt 6 ps 3 lw 2 lc rgb \"#d62728\" offset 1.5,1.5 "
+             "textcolor rgb \"#b01010\"\n";
     }
     o << "plot ";
     for (size_t i = 0; i < f.series.size(); ++i) {

@@ -259,6 +259,10 @@ DriveOutcome drive(const RunDir& dir, Manifest& m, Executor& ex, const ExecConte
     }
     m.executor = ex.options_json();
     dir.save(m);
+    if (resume)
+        hooks.on_note("resume: " + std::to_string(out.reused) + " of " +
+                      std::to_string(m.jobs.size()) + " runs have a result in the run folder; " +
+                      std::to_string(todo.size()) + " to run");
     for (size_t i = 0; i < m.jobs.size(); ++i)
         if (out.results[i]) hooks.on_result(i, *out.results[i]);
     ExecHooks inner = hooks;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,10 @@ enum class Outcome : uint8_t {
 };
 const char* outcome_name(Outcome o);
 std::optional<Outcome> outcome_from_name(const std::string& s);
+
+inline std::ostream& operator<<(std::ostream& o, Outcome x) {
+    return o << outcome_name(x);
+}
 
 // Definitive answers are kept by --resume; the others are run again.
 bool is_definitive(Outcome o);

@@ -84,6 +84,9 @@ enum class Status {
     Interrupted,  // the run was stopped by the Ctrl-C
 };
 const char* status_name(Status s);
+inline std::ostream& operator<<(std::ostream& o, Status s) {
+    return o << status_name(s);
+}
 
 struct Row {
     std::vector<std::string> values;  // per swept axis
