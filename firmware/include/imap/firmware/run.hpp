@@ -9,6 +9,7 @@
 #include "imap/firmware/plan.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
+#include "imap/isa/model_run.hpp"
 
 namespace imap::firmware {
 
@@ -26,6 +27,11 @@ struct FrameResult {
 std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m);
 std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& prog,
                                                           const std::vector<uint64_t>& cycles);
+
+// A frame's result from any model's run result: the phases named by the
+// program, the disparity map from the model's video output (w x h pixels).
+FrameResult frame_result(const isa::Program& prog, const isa::ModelRun& run,
+                         std::vector<uint8_t> pixels, int w, int h);
 
 // Runs one frame on the bare machine core (the executor every model wraps).
 // `observer` (optional, e.g. the waves tracer) is attached for the run.
