@@ -643,6 +643,14 @@ std::string junit_xml(const Plan& p, const Result& r, const std::string& executo
     return x.str();
 }
 
+namespace {
+// Milliseconds to the nanosecond, so that the JSON carries no float noise
+// (7.22195, not 7.2219500000000005).
+double ms_ns(double ms) {
+    return std::round(ms * 1e6) / 1e6;
+}
+}  // namespace
+
 json to_json(const Plan& p, const Result& r, const std::string& executor) {
     json s;
     s["suite"] = p.suite;
@@ -665,7 +673,7 @@ json to_json(const Plan& p, const Result& r, const std::string& executor) {
         if (!o.passed) cj["reason"] = o.reason;
         if (o.have_cycles) {
             cj["cycles"] = o.cycles;
-            cj["modeled_ms"] = o.modeled_ms;
+            cj["modeled_ms"] = ms_ns(o.modeled_ms);
         }
         cj["wall_s"] = std::round(o.wall_s * 1000.0) / 1000.0;
         json runs = json::object();
@@ -683,7 +691,7 @@ json to_json(const Plan& p, const Result& r, const std::string& executor) {
                 if (run->has_report) {
                     rj["bit_exact"] = run->bit_exact;
                     rj["cycles"] = run->cycles;
-                    rj["modeled_ms"] = run->modeled_ms;
+                    rj["modeled_ms"] = ms_ns(run->modeled_ms);
                     json ph = json::object();
                     for (const auto& [n, c] : run->phases) ph[n] = c;
                     rj["phases"] = ph;

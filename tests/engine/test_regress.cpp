@@ -200,7 +200,8 @@ BOOST_AUTO_TEST_CASE(junit_counts_and_skips) {
         p.jobs.push_back({"j" + std::to_string(i), "core", {"run", "--model", "core"}});
     }
     rg::Result r;
-    r.runs = {ran("core", 1), std::nullopt, ran("core", 2)};
+    r.runs = {ran("core", 288878), std::nullopt, ran("core", 2)};
+    r.runs[0]->modeled_ms = 288878 / (40.0 * 1e6) * 1e3;  // as the models compute it: 7.2219500000000005
     r.runs[2]->outcome = eng::Outcome::Mismatch;
     r.runs[2]->bit_exact = false;
     r.runs[2]->differing_pixels = 1;
@@ -223,5 +224,8 @@ BOOST_AUTO_TEST_CASE(junit_counts_and_skips) {
     const auto s = rg::to_json(p, r, "local");
     BOOST_TEST(s["not_run"] == 1);
     BOOST_TEST(s["cases"][1]["runs"]["core"]["outcome"] == "not-run");
+    // No float noise in the JSON.
+    BOOST_TEST(s["cases"][0]["modeled_ms"].dump() == "7.22195");
+    BOOST_TEST(s["cases"][0]["runs"]["core"]["modeled_ms"].dump() == "7.22195");
     BOOST_TEST(rg::xml_escape(std::string("a\x01&\"")) == "a?&amp;&quot;");
 }
