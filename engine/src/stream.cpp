@@ -132,7 +132,9 @@ json record_json(const tb::FrameRecord& r) {
               {"latency_ms", r.latency_ms},
               {"deadline_met", r.deadline_met},
               {"differing_pixels", r.differing},
-              {"wall_s", r.wall_s}};
+              {"wall_s", r.wall_s},
+              {"model_wall_s", r.model_wall_s},
+              {"golden_wall_s", r.golden_wall_s}};
     j["bad1_percent"] = r.bad1 >= 0 ? json(r.bad1) : json(nullptr);
     json ph = json::object();
     for (const auto& [name, c] : r.phases) ph[name] = c;

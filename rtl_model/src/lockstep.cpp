@@ -125,8 +125,10 @@ void Side::retire(const isa::Machine& m, const isa::TraceEvent& e, uint64_t inde
     for (int i = 0; i < isa::kCpRegs; ++i) r.creg[static_cast<size_t>(i)] = m.cp(i);
     const size_t NR = static_cast<size_t>(c.pe_regs);
     r.lanes.resize((NR + 3) * P);
-    // The register lanes are contiguous (machine.hpp: regs | C | T | M).
-    std::memcpy(r.lanes.data(), m.reg_lanes(0), NR * P);
+    // One P-byte row per register (the machine pads its rows: they are not
+    // adjacent).
+    for (size_t i = 0; i < NR; ++i)
+        std::memcpy(r.lanes.data() + i * P, m.reg_lanes(static_cast<int>(i)), P);
     std::memcpy(r.lanes.data() + NR * P, m.carry_lanes(), P);
     std::memcpy(r.lanes.data() + (NR + 1) * P, m.test_lanes(), P);
     std::memcpy(r.lanes.data() + (NR + 2) * P, m.mask_lanes(), P);
