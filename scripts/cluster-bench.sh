@@ -30,7 +30,7 @@ report() {  # label seconds [tasks]
 }
 
 t0=$(now); "$exe" "${sweep[@]}" -j "$cpus" > "$work/local.out"; t1=$(now)
-local_s=$(echo "$t1 - $t0" | bc)
+local_s=$(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')
 echo "sweep of $points points (${sweep[*]}), $cpus CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
 report "local -j $cpus" "$local_s"
 
@@ -42,5 +42,5 @@ for p in "${packings[@]}"; do
     --run-dir "$work/run-$p" > "$work/slurm-$p.out"
   t1=$(now)
   tasks=$(( (points + p - 1) / p ))
-  report "slurm, $p point(s) per task" "$(echo "$t1 - $t0" | bc)" "$tasks" "$local_s"
+  report "slurm, $p point(s) per task" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')" "$tasks" "$local_s"
 done
