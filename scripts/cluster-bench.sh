@@ -36,6 +36,15 @@ report "local -j $cpus" "$local_s"
 
 bash scripts/slurm-test-cluster.sh start "$work/cluster" > "$work/cluster.out"
 export SLURM_CONF="$work/cluster/slurm.conf"
+# Slurm's own cost: an array of empty tasks, one per point.
+t0=$(now)
+job=$(sbatch --parsable --array=0-$((points - 1)) --output=/dev/null --wrap=true)
+while [ -n "$(squeue --noheader --jobs="$job" --states=PENDING,RUNNING,COMPLETING,CONFIGURING 2>/dev/null)" ]; do
+  sleep 0.05
+done
+t1=$(now)
+awk -v s="$(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')" -v n="$points" -v c="$cpus" 'BEGIN {
+  printf "%-28s %7.1f s  %d empty tasks: %.2f s per task (x %d CPUs)\n", "slurm, empty array", s, n, s * c / n, c }'
 for p in "${packings[@]}"; do
   t0=$(now)
   "$exe" "${sweep[@]}" --executor slurm --points-per-task "$p" --poll 0.2 \
@@ -44,3 +53,7 @@ for p in "${packings[@]}"; do
   tasks=$(( (points + p - 1) / p ))
   report "slurm, $p point(s) per task" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')" "$tasks" "$local_s"
 done
+# Local again, to bracket the Slurm runs (the machine's load changes).
+t0=$(now); "$exe" "${sweep[@]}" -j "$cpus" > "$work/local2.out"; t1=$(now)
+report "local -j $cpus (again)" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')"
+echo "load at the end $(cut -d' ' -f1-3 /proc/loadavg)"
