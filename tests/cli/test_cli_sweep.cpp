@@ -263,6 +263,22 @@ BOOST_AUTO_TEST_CASE(nothing_runs_exit_5) {
     BOOST_TEST(dry.out.find("nothing fits") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(resume_of_a_local_run_refuses_slurm_options) {
+    // A local run folder resumed with a Slurm option would silently run
+    // locally and ignore it: refused, before anything runs.
+    const fs::path d = tmpdir();
+    const fs::path rd = d / "rundir";
+    const Result first =
+        run("sweep --roi-size 32x16 --D 8 --pes 8 --keep --run-dir " + rd.string());
+    BOOST_TEST_INFO(first.out);
+    BOOST_REQUIRE_EQUAL(first.code, 0);
+    const Result again = run("sweep --resume " + rd.string() + " --partition debug");
+    BOOST_TEST_INFO(again.out);
+    BOOST_TEST(again.code == 2);
+    BOOST_TEST(again.out.find("need --executor slurm") != std::string::npos);
+    BOOST_TEST(again.out.find("executor is local") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(knee_is_found_and_explained) {
     // 64 -> 128 PEs on a 128-wide ROI: the DP phases stop shrinking; whatever
     // the firmware's cycle counts, the curve's slope changes there or not, and

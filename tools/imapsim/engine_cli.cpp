@@ -72,6 +72,10 @@ std::unique_ptr<eng::Executor> make_executor(const ExecFlags& f, const json& sto
     std::string ex = f.executor;
     if (ex.empty()) ex = stored.value("executor", std::string("local"));
     if (ex == "local") {
+        if (slurm_flags_given(f))
+            throw UserError(
+                "the Slurm options (--partition, --time-limit, ...) need --executor "
+                "slurm (this run folder's executor is local)");
         unsigned j = stored.value("executor", std::string()) == "local" && f.jobs.empty()
                          ? stored.value("jobs", 0u)
                          : 0u;
