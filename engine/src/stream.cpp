@@ -12,6 +12,7 @@
 
 #include "imap/engine/error.hpp"
 #include "imap/vision/calib.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
 
 namespace imap::engine::stream {
@@ -240,8 +241,9 @@ SideBySide::SideBySide(const std::string& path, double fps, const g::Roi& roi, i
     tmp_ = (p.parent_path() / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) +
                                p.extension().string()))
                .string();
+    legend_ = v::disparity_legend(roi.w, D);
     const bool ok = w_.open(tmp_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps,
-                            cv::Size(2 * roi.w, roi.h), true);
+                            cv::Size(2 * roi.w, roi.h + legend_.rows), true);
     if (!ok) {
         std::remove(tmp_.c_str());
         throw Error("--video '" + path +
@@ -258,15 +260,13 @@ SideBySide::~SideBySide() {
 }
 
 void SideBySide::add(const cv::Mat& left, const cv::Mat& disp) {
-    cv::Mat frame(roi_.h, 2 * roi_.w, CV_8UC3);
+    cv::Mat frame(roi_.h + legend_.rows, 2 * roi_.w, CV_8UC3, cv::Scalar(0, 0, 0));
     cv::cvtColor(left(cv::Rect(roi_.x0, roi_.y0, roi_.w, roi_.h)),
                  frame(cv::Rect(0, 0, roi_.w, roi_.h)), cv::COLOR_GRAY2BGR);
-    // Disparities 0..D-1 over the full colour map; 255 (occluded) black.
-    cv::Mat scaled, colour;
-    disp.convertTo(scaled, CV_8U, D_ > 1 ? 255.0 / (D_ - 1) : 1.0);
-    cv::applyColorMap(scaled, colour, cv::COLORMAP_JET);
-    colour.setTo(cv::Scalar(0, 0, 0), disp == 255);
-    colour.copyTo(frame(cv::Rect(roi_.w, 0, roi_.w, roi_.h)));
+    // The colours of the disparity PNGs' colour maps (occluded: white), with
+    // the legend under the map (docs/stream.md).
+    v::colorize_disparity(disp, D_).copyTo(frame(cv::Rect(roi_.w, 0, roi_.w, roi_.h)));
+    legend_.copyTo(frame(cv::Rect(roi_.w, roi_.h, roi_.w, legend_.rows)));
     w_.write(frame);
     ++frames_;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "imap/engine/error.hpp"
+#include "imap/engine/params_json.hpp"
 #include "imap/firmware/plan.hpp"
 #include "imap/isa/config.hpp"
 #include "imap/isa/program.hpp"
@@ -57,15 +58,6 @@ ValueType machine_type(const isa::ParamInfo& pi) {
         pi.range.find("exclusive") != std::string::npos)
         return ValueType::Real;
     return ValueType::Int;
-}
-
-// A machine parameter's text as a JSON number when it is one.
-json param_value(const std::string& v) {
-    long long i = 0;
-    double d = 0;
-    if (parse_uint_text(v, &i)) return i;
-    if (parse_real_text(v, &d)) return d;
-    return v;
 }
 
 }  // namespace
@@ -428,9 +420,8 @@ Plan plan(const Spec& s) {
             } catch (const std::exception&) {
             }
         }
-    json mach = json::object();
-    for (const isa::ParamInfo& pi : cfg.list())
-        if (!swept_names.count(pi.name)) mach[pi.name] = param_value(pi.value);
+    json mach = machine_params_json(cfg);
+    for (const std::string& n : swept_names) mach.erase(n);
     fixed["machine"] = mach;
     if (!swept_names.count("roi_size")) {
         const Axis* rs = nullptr;

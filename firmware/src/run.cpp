@@ -27,6 +27,16 @@ isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {
     return im;
 }
 
+void set_relayout_figures(const FramePlan& plan, FrameResult& r) {
+    r.relayout_in = r.relayout_out = 0;
+    for (const auto& [name, cyc] : r.phases) {
+        if (name == "relayout_in") r.relayout_in = cyc;
+        if (name == "relayout_out") r.relayout_out = cyc;
+    }
+    r.relayout_bound_in = plan.rl.bound_in;
+    r.relayout_bound_out = plan.rl.bound_out;
+}
+
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
                            const golden::ImageView& left, const golden::ImageView& right,
                            const isa::MachineConfig& cfg, isa::Observer* observer) {
@@ -43,20 +53,21 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     m.run();
     isa::ModelRun run = isa::model_run_of(m);
     run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return frame_result(prog, run, video.output[0].pixels, plan.roi.w, plan.roi.h);
+    return frame_result(plan, prog, run, std::move(video.output[0].pixels));
 }
 
-FrameResult frame_result(const isa::Program& prog, const isa::ModelRun& run,
-                         std::vector<uint8_t> pixels, int w, int h) {
+FrameResult frame_result(const FramePlan& plan, const isa::Program& prog, const isa::ModelRun& run,
+                         std::vector<uint8_t> pixels) {
     FrameResult r;
     r.cycles = run.cycles;
     r.modeled_ms = run.modeled_ms;
     r.wall_s = run.wall_s;
     r.phases = phase_table(prog, run.phase_cycles);
     r.stats = run.stats;
-    r.map.width = w;
-    r.map.height = h;
+    r.map.width = plan.roi.w;
+    r.map.height = plan.roi.h;
     r.map.data = std::move(pixels);
+    set_relayout_figures(plan, r);
     return r;
 }
 

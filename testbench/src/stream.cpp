@@ -141,7 +141,7 @@ void StreamTestbench::control() {
                 rec.latency_ms = rec.done_ms - rec.capture_ms;
                 rec.deadline_met = rec.latency_ms <= setup_.timing.deadline_ms * (1 + 1e-12);
                 rec.cycles = m.cycles();
-                rec.compute_ms = setup_.machine.seconds(rec.cycles) * 1e3;
+                rec.compute_ms = setup_.machine.milliseconds(rec.cycles);
                 rec.stall_ms = ms(model_.cp.video_stall());
                 rec.phases = firmware::phase_table(m);
                 if (model_.cp.fault()) {

@@ -13,7 +13,6 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <sstream>
 
 #include "cli_common.hpp"
@@ -151,12 +150,7 @@ Subcommand register_stream(CLI::App& app) {
             // A file inside --out-dir: its folder is created with it, and
             // checked above.
             auto check_file = [&](const char* flag, const std::string& path) {
-                const auto norm = [](const fs::path& q) {
-                    return (fs::absolute(q) / "").lexically_normal();
-                };
-                if (!o->out_dir.empty() && !path.empty() &&
-                    norm(fs::path(path).parent_path()) == norm(o->out_dir))
-                    return;
+                if (file_in_folder(path, o->out_dir)) return;
                 check_output_file(flag, path, false);
             };
             check_file("--json", o->json_log);

@@ -76,6 +76,7 @@ class SideBySide {
     golden::Roi roi_;
     int D_;
     cv::VideoWriter w_;
+    cv::Mat legend_;
     int frames_ = 0;
     bool done_ = false;
 };

@@ -20,7 +20,14 @@ struct FrameResult {
     std::vector<std::pair<std::string, uint64_t>> phases;  // name, cycles (non-zero only)
     isa::Stats stats;
     double wall_s = 0;
+    // Re-layout: measured cycles of the phases relayout_in / relayout_out and
+    // the lower bound of the plan (FramePlan::rl, docs/firmware.md section 5).
+    uint64_t relayout_in = 0, relayout_out = 0;
+    int64_t relayout_bound_in = 0, relayout_bound_out = 0;
 };
+
+// Fills the re-layout fields of a result from its phases and the plan.
+void set_relayout_figures(const FramePlan& plan, FrameResult& r);
 
 // Phase table of a finished machine (names from the program, zero phases
 // left out).
@@ -29,9 +36,10 @@ std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& pr
                                                           const std::vector<uint64_t>& cycles);
 
 // A frame's result from any model's run result: the phases named by the
-// program, the disparity map from the model's video output (w x h pixels).
-FrameResult frame_result(const isa::Program& prog, const isa::ModelRun& run,
-                         std::vector<uint8_t> pixels, int w, int h);
+// program, the disparity map from the model's video output (the plan's ROI
+// size), the re-layout figures against the plan's bound.
+FrameResult frame_result(const FramePlan& plan, const isa::Program& prog, const isa::ModelRun& run,
+                         std::vector<uint8_t> pixels);
 
 // Runs one frame on the bare machine core (the executor every model wraps).
 // `observer` (optional, e.g. the waves tracer) is attached for the run.

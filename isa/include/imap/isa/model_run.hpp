@@ -15,7 +15,7 @@ namespace imap::isa {
 struct ModelRun {
     bool halted = false;
     uint64_t cycles = 0;
-    double modeled_ms = 0;  // cycles / clock_mhz
+    double modeled_ms = 0;  // MachineConfig::milliseconds(cycles)
     double wall_s = 0;      // wall time of the run (set by the one-call runners)
     std::vector<uint64_t> phase_cycles;
     Stats stats;
@@ -29,7 +29,7 @@ inline ModelRun model_run_of(const Machine& m) {
     ModelRun r;
     r.halted = m.halted();
     r.cycles = m.cycles();
-    r.modeled_ms = m.config().seconds(m.cycles()) * 1e3;
+    r.modeled_ms = m.config().milliseconds(m.cycles());
     r.phase_cycles = m.phase_cycles();
     r.stats = m.stats();
     return r;
