@@ -9,6 +9,9 @@
 #                                             for the node; prints the SLURM_CONF line
 #   scripts/slurm-test-cluster.sh stop DIR    cancels every job, waits for an empty
 #                                             queue, shuts the daemons down
+#   ... start DIR --owner PID                 also stops the cluster by itself when
+#                                             process PID ends (a test killed by its
+#                                             time limit leaves no daemon behind)
 #
 # Then: export SLURM_CONF=DIR/slurm.conf (every Slurm command and imapsim use it).
 # Run as root (the daemons run as the user who starts them; slurmd needs root).
@@ -16,8 +19,13 @@ set -euo pipefail
 
 cmd="${1:-}"
 dir="${2:-}"
+owner=""
+if [ "${3:-}" = "--owner" ]; then
+  owner="${4:-}"
+  case "$owner" in ''|*[!0-9]*) echo "$0: --owner needs a process id" >&2; exit 2 ;; esac
+fi
 if [ -z "$cmd" ] || [ -z "$dir" ]; then
-  echo "usage: $0 start|stop DIR" >&2
+  echo "usage: $0 start|stop DIR [--owner PID]" >&2
   exit 2
 fi
 
@@ -131,6 +139,15 @@ CONF
     idle*|mixed*|allocated*) ;;
     *) dump_logs; stop_daemons; die "the node did not come up within 30 s (state '${state:-none}')" ;;
   esac
+  if [ -n "$owner" ]; then
+    # The watchdog: once the owner is gone, stop the cluster (a no-op if the
+    # owner already did). Detached, its output in the cluster's log folder.
+    setsid bash -c 'while kill -0 "$1" 2>/dev/null && [ -f "$3/slurm.conf" ]; do sleep 1; done
+                    [ -f "$3/slurmd.daemon.pid" ] && bash "$2" stop "$3"' \
+      watchdog "$owner" "$(cd "$(dirname "$0")" && pwd)/$(basename "$0")" "$dir" \
+      </dev/null >"$dir/log/watchdog.out" 2>&1 &
+    echo $! > "$dir/watchdog.pid"
+  fi
   echo "slurm-test-cluster: up in $dir (controller port $ctld_port, node $node on port $node_port)"
   echo "export SLURM_CONF=$dir/slurm.conf"
 }
@@ -175,6 +192,14 @@ stop() {
     done
   fi
   stop_daemons
+  # The watchdog, unless it is the one stopping (then this script is it, or
+  # its child).
+  if [ -f "$dir/watchdog.pid" ]; then
+    local w
+    w="$(cat "$dir/watchdog.pid")"
+    [ "$w" != "$$" ] && [ "$w" != "${PPID:-}" ] && kill_pidfile "$dir/watchdog.pid"
+  fi
+  rm -f "$dir/watchdog.pid"
   echo "slurm-test-cluster: stopped ($dir)"
 }
 

@@ -177,7 +177,7 @@ std::string script_text(const Figure& f, const std::string& data_name,
     for (const Annotation& a : f.annotations) {
         o << "set label " << tag++ << " " << quoted(a.text) << " at first " << num(a.x)
           << ", first " << num(a.y)
-          << " left front boxed point pt 6 ps 3 lw 2 lc rgb \"#d62728\" offset 1.5,1.5 "
+          << " left front point pt 6 ps 3 lw 2 lc rgb \"#d62728\" offset 1.5,1.5 "
              "textcolor rgb \"#b01010\"\n";
     }
     o << "plot ";

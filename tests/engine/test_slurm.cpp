@@ -60,7 +60,10 @@ struct Cluster {
     Cluster() {
         dir = tmpdir() / "cluster";
         const auto t0 = std::chrono::steady_clock::now();
-        const Run r = sh("bash " SLURM_CLUSTER_SCRIPT " start " + dir.string());
+        // --owner: if this program is killed (CTest's time limit), the
+        // script's watchdog stops the daemons.
+        const Run r = sh("bash " SLURM_CLUSTER_SCRIPT " start " + dir.string() + " --owner " +
+                         std::to_string(::getpid()));
         log = r.out;
         up = r.code == 0;
         if (up) ::setenv("SLURM_CONF", (dir / "slurm.conf").c_str(), 1);
@@ -176,28 +179,39 @@ int wait_exit(pid_t pid) {
 // The sweep of the tests: small points of the bare machine, some that do not fit.
 const std::string kSweep = "sweep --model core --roi-size 32x16 --D 4..9 --mem-bytes 1024,60";
 
+// The local executor's CSV of kSweep, run once for the whole test program.
+const std::string& local_sweep_csv() {
+    static const std::string csv = [] {
+        const fs::path d = tmpdir();
+        const Run local = imapsim(kSweep + " -j 2 --csv " + (d / "local.csv").string() +
+                                  " --json " + (d / "local.json").string());
+        BOOST_TEST_INFO(local.out);
+        BOOST_REQUIRE_EQUAL(local.code, 0);
+        return (d / "local.csv").string();
+    }();
+    return csv;
+}
+
 }  // namespace
 
 BOOST_TEST_GLOBAL_FIXTURE(ClusterFixture);
 
 BOOST_AUTO_TEST_CASE(sweep_equals_local) {
     require_cluster();
-    const fs::path d = tmpdir();
-    const Run local = imapsim(kSweep + " -j 2 --csv " + (d / "local.csv").string() + " --json " +
-                              (d / "local.json").string());
-    BOOST_TEST_INFO(local.out);
-    BOOST_REQUIRE_EQUAL(local.code, 0);
+    const fs::path d = fs::path(local_sweep_csv()).parent_path();
     const auto t0 = std::chrono::steady_clock::now();
-    const Run slurm = imapsim(kSweep + " --executor slurm --points-per-task 2 --poll 0.3 --run-dir " +
-                              (d / "sweep-run").string() + " --csv " + (d / "slurm.csv").string() +
-                              " --json " + (d / "slurm.json").string());
-    BOOST_TEST_MESSAGE("sweep through slurm: "
-                       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
-                       << " s");
+    const Run slurm =
+        imapsim(kSweep + " --executor slurm --points-per-task 2 --poll 0.3 --run-dir " +
+                (d / "sweep-run").string() + " --csv " + (d / "slurm.csv").string() + " --json " +
+                (d / "slurm.json").string());
+    BOOST_TEST_MESSAGE(
+        "sweep through slurm: "
+        << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s");
     BOOST_TEST_INFO(slurm.out);
     BOOST_REQUIRE_EQUAL(slurm.code, 0);
     BOOST_TEST(slurm.out.find("submitted job array") != std::string::npos);
-    BOOST_TEST((csv_without_wall(slurp(d / "local.csv")) == csv_without_wall(slurp(d / "slurm.csv"))));
+    BOOST_TEST(
+        (csv_without_wall(slurp(d / "local.csv")) == csv_without_wall(slurp(d / "slurm.csv"))));
     json a = json::parse(slurp(d / "local.json")), b = json::parse(slurp(d / "slurm.json"));
     for (json* j : {&a, &b}) {
         j->erase("wall_s");
@@ -208,7 +222,8 @@ BOOST_AUTO_TEST_CASE(sweep_equals_local) {
     const json sub = job_of(d / "sweep-run", 1);
     BOOST_TEST(sub.at("tasks") == 3);
     for (int t = 0; t < 3; ++t)
-        BOOST_TEST(fs::exists(d / "sweep-run" / "slurm" / "sub-1" / ("task-" + std::to_string(t) + ".json")));
+        BOOST_TEST(fs::exists(d / "sweep-run" / "slurm" / "sub-1" /
+                              ("task-" + std::to_string(t) + ".json")));
 }
 
 BOOST_AUTO_TEST_CASE(quick_regression_equals_local) {
@@ -216,18 +231,19 @@ BOOST_AUTO_TEST_CASE(quick_regression_equals_local) {
     // The quick suite's cases on the bare machine (the fastest model; the
     // suite on every model runs locally as regress.quick).
     const fs::path d = tmpdir();
-    const Run local = imapsim("regress --suite quick --models core -j 2 --json " +
-                              (d / "rl.json").string());
+    const Run local =
+        imapsim("regress --suite quick --models core -j 2 --json " + (d / "rl.json").string());
     BOOST_TEST_INFO(local.out);
     BOOST_REQUIRE_EQUAL(local.code, 0);
     const auto t0 = std::chrono::steady_clock::now();
-    const Run slurm = imapsim("regress --suite quick --models core --executor slurm "
-                              "--points-per-task 4 --poll 0.3 --run-dir " +
-                              (d / "regress-run").string() + " --json " + (d / "rs.json").string() +
-                              " --junit " + (d / "rs.xml").string());
-    BOOST_TEST_MESSAGE("quick regression (core) through slurm: "
-                       << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
-                       << " s");
+    const Run slurm = imapsim(
+        "regress --suite quick --models core --executor slurm "
+        "--points-per-task 19 --poll 0.3 --run-dir " +
+        (d / "regress-run").string() + " --json " + (d / "rs.json").string() + " --junit " +
+        (d / "rs.xml").string());
+    BOOST_TEST_MESSAGE(
+        "quick regression (core) through slurm: "
+        << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s");
     BOOST_TEST_INFO(slurm.out);
     BOOST_REQUIRE_EQUAL(slurm.code, 0);
     const json a = json::parse(slurp(d / "rl.json")), b = json::parse(slurp(d / "rs.json"));
@@ -241,11 +257,13 @@ BOOST_AUTO_TEST_CASE(cancelled_task_is_a_failed_row_and_resume_runs_it) {
     require_cluster();
     const fs::path d = tmpdir(), run = d / "cancel-run";
     // One task at a time, so that the last one is still pending when it is cancelled.
-    const pid_t pid = spawn({IMAPSIM_EXE, "sweep", "--model", "core", "--roi-size", "32x16", "--D",
-                             "4..9", "--mem-bytes", "1024,60", "--executor", "slurm",
-                             "--max-concurrent", "1", "--poll", "0.3", "--run-dir", run.string(),
-                             "--csv", (d / "cancel.csv").string()},
-                            d / "cancel.out");
+    const pid_t pid =
+        spawn({IMAPSIM_EXE,        "sweep",      "--model",    "core",
+               "--roi-size",       "32x16",      "--D",        "4..9",
+               "--mem-bytes",      "1024,60",    "--executor", "slurm",
+               "--max-concurrent", "1",          "--poll",     "0.3",
+               "--run-dir",        run.string(), "--csv",      (d / "cancel.csv").string()},
+              d / "cancel.out");
     BOOST_REQUIRE(pid > 0);
     const json sub = job_of(run, 1);
     BOOST_REQUIRE_MESSAGE(!sub.is_null(), slurp(d / "cancel.out"));
@@ -263,7 +281,8 @@ BOOST_AUTO_TEST_CASE(cancelled_task_is_a_failed_row_and_resume_runs_it) {
         if (r.find("|error|") != std::string::npos) {
             ++failed;
             BOOST_TEST(r.find("slurm: task " + std::to_string(last) + " of job " + job) !=
-                       std::string::npos, r);
+                           std::string::npos,
+                       r);
             BOOST_TEST((r.find("cancelled") != std::string::npos), r);
         }
         ok += r.find("|ok|") != std::string::npos;
@@ -279,18 +298,33 @@ BOOST_AUTO_TEST_CASE(cancelled_task_is_a_failed_row_and_resume_runs_it) {
     BOOST_TEST(res.out.find("5 of 6 runs have a result") != std::string::npos);
     const json sub2 = job_of(run, 2);
     BOOST_TEST(sub2.at("points") == 1);
-    const Run local = imapsim(kSweep + " -j 2 --csv " + (d / "local2.csv").string());
-    BOOST_REQUIRE_EQUAL(local.code, 0);
-    BOOST_TEST((csv_without_wall(slurp(d / "local2.csv")) == csv_without_wall(slurp(d / "resumed.csv"))));
+    BOOST_TEST(
+        (csv_without_wall(slurp(local_sweep_csv())) == csv_without_wall(slurp(d / "resumed.csv"))));
 }
 
 BOOST_AUTO_TEST_CASE(ctrl_c_cancels_the_array_and_leaves_a_partial_report) {
     require_cluster();
     const fs::path d = tmpdir(), run = d / "int-run";
-    const pid_t pid = spawn({IMAPSIM_EXE, "sweep", "--model", "core", "--roi-size", "32x16", "--D",
-                             "4..9", "--executor", "slurm", "--max-concurrent", "1", "--poll",
-                             "0.3", "--run-dir", run.string(), "--csv", (d / "int.csv").string(),
-                             "--json", (d / "int.json").string()},
+    const pid_t pid = spawn({IMAPSIM_EXE,
+                             "sweep",
+                             "--model",
+                             "core",
+                             "--roi-size",
+                             "32x16",
+                             "--D",
+                             "4..9",
+                             "--executor",
+                             "slurm",
+                             "--max-concurrent",
+                             "1",
+                             "--poll",
+                             "0.3",
+                             "--run-dir",
+                             run.string(),
+                             "--csv",
+                             (d / "int.csv").string(),
+                             "--json",
+                             (d / "int.json").string()},
                             d / "int.out");
     BOOST_REQUIRE(pid > 0);
     const json sub = job_of(run, 1);
