@@ -12,6 +12,11 @@ PACKAGES=(
   nlohmann-json3-dev      # JSON reports
   python3                 # helper scripts (scripts/model-speed.sh)
   valgrind                # memcheck test of a TLM run (scripts/valgrind.sh, CTest valgrind.tlm_run)
+  gnuplot-nox             # sweep plots (pngcairo and svg terminals; docs/whatif.md)
+  fonts-dejavu-core       # a font for gnuplot's cairo terminals
+  munge                   # Slurm authentication (the private test cluster runs its own munged)
+  slurmctld slurmd        # Slurm 22.05 controller and node daemons (CTest engine.slurm, docs/cluster.md)
+  slurm-client            # sbatch, squeue, scancel, sacct: the Slurm executor
 )
 
 missing=()

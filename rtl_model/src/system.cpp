@@ -513,11 +513,7 @@ void RtlSystem::rethrow_if_faulted() const {
 RtlRunResult RtlSystem::result() const {
     const isa::Machine& m = *m_;
     RtlRunResult r;
-    r.halted = m.halted();
-    r.cycles = m.cycles();
-    r.modeled_ms = m.config().milliseconds(m.cycles());
-    r.phase_cycles = m.phase_cycles();
-    r.stats = m.stats();
+    static_cast<isa::ModelRun&>(r) = isa::model_run_of(m);
     r.clock_edges = array.edges();
     r.signal_writes = array.signal_writes();
     r.traced_pes = static_cast<int>(array.pe.size());

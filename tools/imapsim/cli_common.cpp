@@ -148,41 +148,6 @@ bool file_in_folder(const std::string& path, const std::string& dir) {
     return norm(folder_of(path)) == norm(dir);
 }
 
-nlohmann::json param_value_json(const imap::isa::ParamInfo& p) {
-    const std::string& v = p.value;
-    if (v == "on" || v == "true") return true;
-    if (v == "off" || v == "false") return false;
-    if (!v.empty()) {
-        errno = 0;
-        char* end = nullptr;
-        const long long i = std::strtoll(v.c_str(), &end, 10);
-        if (errno == 0 && end != v.c_str() && *end == '\0') return i;
-        errno = 0;
-        const unsigned long long u = std::strtoull(v.c_str(), &end, 10);
-        if (errno == 0 && end != v.c_str() && *end == '\0' && v[0] != '-') return u;
-        errno = 0;
-        const double d = std::strtod(v.c_str(), &end);
-        if (errno == 0 && end != v.c_str() && *end == '\0' && std::isfinite(d)) return d;
-    }
-    return v;  // not a number: kept as text
-}
-
-nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const imap::isa::ParamInfo& p : cfg.list()) j[p.name] = param_value_json(p);
-    return j;
-}
-
-nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const imap::isa::ParamInfo& p : cfg.list())
-        j[p.name] = {{"assumption", p.assumption},
-                     {"faster", p.faster},
-                     {"unit", p.unit},
-                     {"group", p.group}};
-    return j;
-}
-
 std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg) {
     std::string s;
     for (const imap::isa::ParamInfo& p : cfg.list()) {

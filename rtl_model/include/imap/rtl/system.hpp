@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "imap/isa/machine.hpp"
+#include "imap/isa/model_run.hpp"
 #include "imap/rtl/config.hpp"
 #include "imap/tlm/system.hpp"
 
@@ -42,19 +43,12 @@ namespace imap::rtl {
 using ImageInput = isa::ImageVideoPort::Image;
 using OutputImages = tlm::OutputImages;
 
-struct RtlRunResult {
-    bool halted = false;
-    uint64_t cycles = 0;
-    double modeled_ms = 0;  // cycles / clock_mhz
-    double wall_s = 0;      // wall time of sc_start (run_rtl only)
-    std::vector<uint64_t> phase_cycles;
-    isa::Stats stats;
+// The common run result (isa/model_run.hpp; wall_s: of sc_start, run_rtl
+// only) and the RTL model's own statistics.
+struct RtlRunResult : isa::ModelRun {
     uint64_t clock_edges = 0;    // rising edges processed by top.array
     uint64_t signal_writes = 0;  // sc_signal writes made (only on a change)
     int traced_pes = 0;          // PEs with per-PE signals
-    double sim_time_s = 0;       // sc_time_stamp() at the end (= cycles x period)
-    // The final architectural state (registers, flags, memories, CP).
-    std::shared_ptr<const isa::Machine> machine;
 };
 
 // Called by top.array after every retired instruction (after a fault
