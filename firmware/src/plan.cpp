@@ -18,7 +18,7 @@ int ceil_div(int a, int b) {
 }
 
 int wm_max(const golden::Params& p) {
-    return p.km * 255 + p.kb * p.gb;
+    return p.km * std::min(255, p.ad_max) + p.kb * p.gb;
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -111,9 +111,7 @@ struct FreeMap {
     std::vector<int> avail[2];  // first column from which an address may hold pointers
     std::vector<char> used[2];
 
-    bool free_for(int p, int a, int k) const {
-        return !used[p][a] && avail[p][a] <= k;
-    }
+    bool free_for(int p, int a, int k) const { return !used[p][a] && avail[p][a] <= k; }
     // Lowest address of `len` bytes free for every kind in `kinds` from column k.
     int find(int len, const std::vector<int>& kinds, int k, int from = 0) const {
         for (int a = from; a + len <= mem; ++a) {
@@ -136,8 +134,10 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         fm.avail[p].assign(mem, kNever);
         fm.used[p].assign(mem, 0);
         for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
-        for (int i = 0; i <= f.kr; ++i) fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
-        for (int i = 0; i <= f.kl; ++i) fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
+        for (int i = 0; i <= f.kr; ++i)
+            fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
+        for (int i = 0; i <= f.kl; ++i)
+            fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
     }
     for (int p = 0; p < 2; ++p) f.ptr[p].assign(f.kmax + 1, PointerColumn{});
     f.spills.clear();
@@ -149,7 +149,8 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         const int k = f.passes[i].k;
         size_t j = i;
         int size = 0;
-        while (j < f.passes.size() && f.passes[j].k == k) size = std::max(size, f.passes[j++].bytes);
+        while (j < f.passes.size() && f.passes[j].k == k)
+            size = std::max(size, f.passes[j++].bytes);
         std::vector<int> kinds;
         for (int p = 0; p < f.kinds; ++p)
             if (k <= f.K[p]) kinds.push_back(p);
@@ -247,13 +248,30 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     return true;
 }
 
+void check_options(const golden::Params& p) {
+    // SPEC A.9 options the firmware does not run (docs/firmware.md, section 10):
+    // refused up front, never a wrong map.
+    const golden::Params off;
+    std::string missing;
+    auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
+    if (p.mode == golden::Mode::Joint) add("--mode joint");
+    if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
+    if (p.kc != off.kc) add("--kc " + std::to_string(p.kc));
+    if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
+    if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
+    if (!missing.empty())
+        throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
+                            " (it runs SPEC A.1-A.7 with --ad-max; needs --mode single or bidir, "
+                            "--dissim ad, --kc 0, --agg-rx 0, --agg-ry 0; the golden runs all)");
+}
+
 void check_range(const golden::Params& p) {
     const int64_t w = wm_max(p);
     const int64_t od = int64_t{p.Wo} + p.Wd;
     if (std::max(w, od) > kMaxSpread) {
         std::ostringstream os;
-        os << "firmware: cost spread max(km*255 + kb*gb, Wo + Wd) = " << std::max(w, od)
-           << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
+        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb, Wo + Wd) = "
+           << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
            << "; lower --km, --kb, --gb, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
@@ -324,6 +342,7 @@ bool place_tiny(ForwardPlan& f, int mem) {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
                               bool tiny) {
     golden::validate_for_width(p, N);
+    check_options(p);
     check_range(p);
     ForwardPlan f;
     f.N = N;
@@ -451,7 +470,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
     // Size of [lo, hi] (lanes, within 0..P-1) inside the arc [a, a + len) mod P.
     auto overlap = [&](int lo, int hi, int a, int len) {
         if (lo > hi) return 0;
-        auto lin = [&](int b0, int b1) { return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1); };
+        auto lin = [&](int b0, int b1) {
+            return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1);
+        };
         int c = lin(a, std::min(a + len, P));
         if (a + len > P) c += lin(0, a + len - P);
         return c;
@@ -537,9 +558,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
-    if (golden::uses_options(p))  // SPEC A.9: golden only until the firmware implements them
-        throw FirmwareError("the DP firmware implements SPEC A.1-A.7 only, not the A.9 options " +
-                            golden::options_string(p) + " (use --preset paper)");
+    check_options(p);
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
@@ -598,8 +617,8 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     Relayout& rl = fp.rl;
     const int P = fp.P;
     const int W0 = seg_width(fp, 0);
-    rl.modular = P % 2 == 0 && span * fp.lpb == P && span * fp.hbmax == P && fp.nseg == 1 &&
-                 W0 <= P / 2;
+    rl.modular =
+        P % 2 == 0 && span * fp.lpb == P && span * fp.hbmax == P && fp.nseg == 1 && W0 <= P / 2;
     if (rl.modular) {
         rl.base = 0;
         if (bidir) {
@@ -661,8 +680,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     if (fp.out + fp.hbmax > mem) {
         std::ostringstream os;
         os << "does not fit: needs " << fp.out + fp.hbmax
-           << " bytes of local memory per PE for the output rows (have " << mem
-           << ", mem_bytes)";
+           << " bytes of local memory per PE for the output rows (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
     end = std::max(end, fp.out + fp.hbmax);
@@ -717,9 +735,13 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "KM", p.km);
     equ(os, "KB", p.kb);
     equ(os, "GB", p.gb);
+    equ(os, "ADMAX", std::min(255, p.ad_max));
     equ(os, "WO", p.Wo);
     equ(os, "WD", p.Wd);
-    equ(os, "FRAME", p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2);
+    equ(os, "FRAME",
+        p.frame == golden::Frame::Cyclopean ? 0
+        : p.frame == golden::Frame::Left    ? 1
+                                            : 2);
     equ(os, "VOTE", p.vote ? 1 : 0);
     equ(os, "KMAX", f.kmax);
     equ(os, "KLEFT", f.bidir ? f.K[0] : 0);
@@ -744,7 +766,9 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     // the left wavefront's last output position + 1 (the merge band ends there)
     int band = 0;
     if (f.bidir) {
-        const int fr = p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2;
+        const int fr = p.frame == golden::Frame::Cyclopean ? 0
+                       : p.frame == golden::Frame::Left    ? 1
+                                                           : 2;
         const int last = fr == 0 ? f.s - 1 + (f.D - 1) / 2 : fr == 1 ? f.s - 1 + f.D - 1 : f.s - 1;
         band = std::min(f.N, last + 1);
     }
