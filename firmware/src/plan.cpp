@@ -4,6 +4,7 @@
 #include <climits>
 #include <sstream>
 
+#include "imap/golden/estimate.hpp"
 #include "imap/isa/assembler.hpp"
 
 namespace imap::firmware {
@@ -297,6 +298,12 @@ uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t
 namespace {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
                               bool tiny);
+}
+
+golden::Params firmware_part(const golden::Params& p) {
+    golden::Params q = golden::paper_part(p);
+    q.ad_max = p.ad_max;  // runs in the firmware (WM_ADD)
+    return q;
 }
 
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {

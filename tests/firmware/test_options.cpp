@@ -6,6 +6,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "fw_test_util.hpp"
+#include "imap/golden/estimate.hpp"
 
 using namespace fwtest;
 
@@ -127,4 +128,22 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
     }
     const std::string q = refusal(g::preset("quality"), g::Roi{0, 0, 128, 128});
     BOOST_TEST(q.find("--mode joint, --kc 4, --agg-rx 2, --agg-ry 2") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
+    // eval --tradeoff measures firmware_part(p) at the headline case: it must
+    // keep what the firmware implements (ad-max) and be accepted.
+    const g::Roi roi{0, 0, 128, 128};
+    for (const auto& v : g::tradeoff_variants()) {
+        g::Params p = v.p;
+        p.D = 64;
+        const g::Params f = fw::firmware_part(p);
+        BOOST_TEST_CONTEXT(v.name) {
+            BOOST_TEST(f.ad_max == p.ad_max);
+            BOOST_TEST(refusal(f, roi).empty());
+        }
+    }
+    g::Params q = g::preset("quality");
+    q.D = 64;
+    BOOST_TEST(!refusal(q, roi).empty());
 }

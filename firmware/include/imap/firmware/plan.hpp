@@ -103,6 +103,13 @@ struct ForwardPlan {
                     const std::function<uint8_t(uint32_t)>& ext) const;
 };
 
+// The part of `p` the firmware runs (docs/firmware.md, section 10): the
+// same parameters with the SPEC A.9 options it does not implement turned
+// off (joint mode -> bidir, dissim ad, kc 0, no aggregation; a census-only
+// cost keeps km = 1); --ad-max stays. For the trade-off table's measured
+// part; a parameter set with those options is refused by plan_frame.
+golden::Params firmware_part(const golden::Params& p);
+
 // Checks the cost range and plans the forward pass and its memory for
 // scanlines of length N (lines on consecutive PEs, the test layout); throws
 // FirmwareError when the set does not fit `cfg`.
