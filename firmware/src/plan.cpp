@@ -36,6 +36,23 @@ void column_ranges(const golden::Params& p, int N, ForwardPlan& f) {
     }
     f.kinds = 2;
     const int s = f.s, ds = f.ds;
+    if (f.joint) {
+        // SPEC A.9 joint (docs/firmware.md, section 10). Kind 0: A.3 over sites
+        // 0..s, single mode's form cut at column s+1 (column k = site k-1).
+        f.K[0] = s + 1;
+        f.lo[0].assign(s + 2, 0);
+        f.hi[0].resize(s + 2);
+        for (int k = 0; k <= s + 1; ++k) f.hi[0][k] = k == 0 ? D - 1 : std::min(D - 1, N - k);
+        // Kind 1: A.4 from (N-1, 0) down to site s, the bidir left wavefront's
+        // mirrored form with the seed column at N and seed disparity 0
+        // (column k = site N-1-k, level j' = D-1-j).
+        f.K[1] = N - 1 - s;
+        f.lo[1].resize(f.K[1] + 1);
+        f.hi[1].assign(f.K[1] + 1, D - 1);
+        for (int k = 0; k <= f.K[1]; ++k) f.lo[1][k] = std::max(0, D - 1 - k);
+        f.kmax = std::max(f.K[0], f.K[1]);
+        return;
+    }
     // Left wavefront (kind 0): column k is site s-1-k, level mirrored j' = D-1-j.
     f.K[0] = s;
     f.lo[0].resize(s + 1);
@@ -255,14 +272,13 @@ void check_options(const golden::Params& p) {
     const golden::Params off;
     std::string missing;
     auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
-    if (p.mode == golden::Mode::Joint) add("--mode joint");
     if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
     if (p.kc != off.kc) add("--kc " + std::to_string(p.kc));
     if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
     if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
-                            " (it runs SPEC A.1-A.7 with --ad-max; needs --mode single or bidir, "
+                            " (it runs SPEC A.1-A.7 with --ad-max and --mode joint; needs "
                             "--dissim ad, --kc 0, --agg-rx 0, --agg-ry 0; the golden runs all)");
 }
 
@@ -354,7 +370,13 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     ForwardPlan f;
     f.N = N;
     f.D = p.D;
-    f.bidir = p.mode == golden::Mode::Bidir;
+    f.joint = p.mode == golden::Mode::Joint;
+    f.bidir = p.mode == golden::Mode::Bidir || f.joint;
+    if (f.joint && tiny)
+        throw FirmwareError(
+            "firmware: --mode joint with the vote needs at least 3 lines per batch (6 PEs; "
+            "the one-line-per-batch mode of 2 to 5 PEs does not keep the meeting level): have " +
+            std::to_string(cfg.pes) + " PEs");
     if (f.bidir) {
         f.s = golden::resolve_seed_col(p, N);
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
@@ -375,7 +397,9 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     f.kr = f.kmax;
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
-    if (f.bidir)
+    if (f.joint)
+        kl = std::max({kl, f.s + p.D, N + p.D - 2 - f.s});
+    else if (f.bidir)
         kl = std::max({kl, f.s + p.D - 1, N - 1 - f.s});
     else
         kl = std::max(kl, N);
@@ -470,7 +494,8 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
         *hi = f.N - 1;
         if (!f.bidir) return;
         if (kind == 0)
-            *hi = img == 0 ? std::min(f.N - 1, f.s + f.D - 2) : f.s - 1;
+            *hi = img == 0 ? std::min(f.N - 1, f.s + f.D - (f.joint ? 1 : 2))
+                           : (f.joint ? f.s : f.s - 1);
         else
             *lo = f.s + 1;
     };
@@ -573,7 +598,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
-    const bool bidir = p.mode == golden::Mode::Bidir;
+    const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;
     const int span = bidir ? 2 : 1;
     fp.lpb = std::min(fp.P / span, 255);
     // Too few lines per batch for the vote across batches: one line at a
@@ -735,6 +760,8 @@ void equ(std::ostringstream& os, const char* name, int64_t v) {
 
 void dp_constants(std::ostringstream& os, const golden::Params& p, const ForwardPlan& f) {
     equ(os, "MODE", f.bidir ? 1 : 0);
+    equ(os, "JOINT", f.joint ? 1 : 0);
+    equ(os, "JM", f.bidir ? std::min(f.D - 1, f.N - 1 - f.s) : 0);  // top level of site s
     equ(os, "N", f.N);
     equ(os, "D", f.D);
     equ(os, "S", f.s);
@@ -776,11 +803,13 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
         const int fr = p.frame == golden::Frame::Cyclopean ? 0
                        : p.frame == golden::Frame::Left    ? 1
                                                            : 2;
-        const int last = fr == 0 ? f.s - 1 + (f.D - 1) / 2 : fr == 1 ? f.s - 1 + f.D - 1 : f.s - 1;
+        const int e = f.joint ? f.s : f.s - 1;  // the left PE's last event site
+        const int last = fr == 0 ? e + (f.D - 1) / 2 : fr == 1 ? e + f.D - 1 : e;
         band = std::min(f.N, last + 1);
     }
     equ(os, "BANDE", band);
-    equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - 2)) : 0);
+    equ(os, "EXCHN",
+        f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {

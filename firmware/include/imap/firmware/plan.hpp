@@ -63,7 +63,8 @@ struct Transfer {
 // Forward-pass plan of one scanline length N (shared by all lines).
 struct ForwardPlan {
     int N = 0, D = 0;
-    bool bidir = false;
+    bool bidir = false;  // two PEs per line (bidir or joint)
+    bool joint = false;  // SPEC A.9 joint: kind 0 = sites 0..s forward, kind 1 = s..N-1 mirrored
     int s = 0;       // seed column (bidir)
     int ds = -1;     // seed disparity, -1 = free
     int kinds = 1;   // 1 (single) or 2 (bidir: 0 = left wavefront, 1 = right)
