@@ -318,7 +318,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
 
 golden::Params firmware_part(const golden::Params& p) {
     golden::Params q = golden::paper_part(p);
-    q.ad_max = p.ad_max;  // runs in the firmware (WM_ADD)
+    q.ad_max = p.ad_max;  // run in the firmware (WM_ADD, DP_MEET)
+    q.mode = p.mode;
     return q;
 }
 

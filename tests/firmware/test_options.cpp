@@ -147,6 +147,7 @@ BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
         const g::Params f = fw::firmware_part(p);
         BOOST_TEST_CONTEXT(v.name) {
             BOOST_TEST(f.ad_max == p.ad_max);
+            BOOST_TEST((f.mode == p.mode));
             BOOST_TEST(refusal(f, roi).empty());
         }
     }

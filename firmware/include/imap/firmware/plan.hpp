@@ -106,8 +106,8 @@ struct ForwardPlan {
 
 // The part of `p` the firmware runs (docs/firmware.md, section 10): the
 // same parameters with the SPEC A.9 options it does not implement turned
-// off (joint mode -> bidir, dissim ad, kc 0, no aggregation; a census-only
-// cost keeps km = 1); --ad-max stays. For the trade-off table's measured
+// off (dissim ad, kc 0, no aggregation; a census-only cost keeps km = 1);
+// --ad-max and --mode joint stay. For the trade-off table's measured
 // part; a parameter set with those options is refused by plan_frame.
 golden::Params firmware_part(const golden::Params& p);
 
