@@ -68,6 +68,22 @@ void require_creatable(const std::string& flag, const std::string& path,
 
 }  // namespace
 
+void check_same_size(const std::string& left, int lw, int lh, const std::string& right, int rw,
+                     int rh) {
+    if (lw == rw && lh == rh) return;
+    throw UserError("left and right images differ in size: " + left + " is " + std::to_string(lw) +
+                    "x" + std::to_string(lh) + ", " + right + " is " + std::to_string(rw) + "x" +
+                    std::to_string(rh));
+}
+
+void validate_frame(const imap::golden::Params& p, const imap::golden::Roi& roi, int w, int h) {
+    try {
+        imap::golden::validate(p, roi, w, h);
+    } catch (const imap::golden::ParamError& e) {
+        throw UserError(e.what());
+    }
+}
+
 void check_output_file(const std::string& flag, const std::string& path, bool image) {
     namespace fs = std::filesystem;
     if (path.empty()) return;

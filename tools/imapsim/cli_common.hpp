@@ -96,6 +96,14 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
 // write its extension. UserError (exit 2) otherwise; nothing when empty.
 void check_output_file(const std::string& flag, const std::string& path, bool image);
 
+// A stereo pair's two images must have one size: UserError naming both files
+// and their sizes otherwise.
+void check_same_size(const std::string& left, int lw, int lh, const std::string& right, int rw,
+                     int rh);
+
+// golden::validate with its ParamError as a UserError (exit 2).
+void validate_frame(const imap::golden::Params& p, const imap::golden::Roi& roi, int w, int h);
+
 // The same for an output folder (`--out-dir`): it is a folder or can be
 // created, and files can be created in it.
 void check_output_dir(const std::string& flag, const std::string& dir);
