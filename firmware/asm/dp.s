@@ -105,6 +105,7 @@ batch:
         DP_EXCHANGE
         DP_INIT
         DP_FORWARD
+        DP_MEET
         DP_CLEARMAP
         DP_BACKTRACK
         DP_MERGE

@@ -4,6 +4,7 @@
 #include <climits>
 #include <sstream>
 
+#include "imap/golden/estimate.hpp"
 #include "imap/isa/assembler.hpp"
 
 namespace imap::firmware {
@@ -18,7 +19,7 @@ int ceil_div(int a, int b) {
 }
 
 int wm_max(const golden::Params& p) {
-    return p.km * 255 + p.kb * p.gb;
+    return p.km * std::min(255, p.ad_max) + p.kb * p.gb;
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -35,6 +36,23 @@ void column_ranges(const golden::Params& p, int N, ForwardPlan& f) {
     }
     f.kinds = 2;
     const int s = f.s, ds = f.ds;
+    if (f.joint) {
+        // SPEC A.9 joint (docs/firmware.md, section 10). Kind 0: A.3 over sites
+        // 0..s, single mode's form cut at column s+1 (column k = site k-1).
+        f.K[0] = s + 1;
+        f.lo[0].assign(s + 2, 0);
+        f.hi[0].resize(s + 2);
+        for (int k = 0; k <= s + 1; ++k) f.hi[0][k] = k == 0 ? D - 1 : std::min(D - 1, N - k);
+        // Kind 1: A.4 from (N-1, 0) down to site s, the bidir left wavefront's
+        // mirrored form with the seed column at N and seed disparity 0
+        // (column k = site N-1-k, level j' = D-1-j).
+        f.K[1] = N - 1 - s;
+        f.lo[1].resize(f.K[1] + 1);
+        f.hi[1].assign(f.K[1] + 1, D - 1);
+        for (int k = 0; k <= f.K[1]; ++k) f.lo[1][k] = std::max(0, D - 1 - k);
+        f.kmax = std::max(f.K[0], f.K[1]);
+        return;
+    }
     // Left wavefront (kind 0): column k is site s-1-k, level mirrored j' = D-1-j.
     f.K[0] = s;
     f.lo[0].resize(s + 1);
@@ -111,9 +129,7 @@ struct FreeMap {
     std::vector<int> avail[2];  // first column from which an address may hold pointers
     std::vector<char> used[2];
 
-    bool free_for(int p, int a, int k) const {
-        return !used[p][a] && avail[p][a] <= k;
-    }
+    bool free_for(int p, int a, int k) const { return !used[p][a] && avail[p][a] <= k; }
     // Lowest address of `len` bytes free for every kind in `kinds` from column k.
     int find(int len, const std::vector<int>& kinds, int k, int from = 0) const {
         for (int a = from; a + len <= mem; ++a) {
@@ -136,8 +152,10 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         fm.avail[p].assign(mem, kNever);
         fm.used[p].assign(mem, 0);
         for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
-        for (int i = 0; i <= f.kr; ++i) fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
-        for (int i = 0; i <= f.kl; ++i) fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
+        for (int i = 0; i <= f.kr; ++i)
+            fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
+        for (int i = 0; i <= f.kl; ++i)
+            fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
     }
     for (int p = 0; p < 2; ++p) f.ptr[p].assign(f.kmax + 1, PointerColumn{});
     f.spills.clear();
@@ -149,7 +167,8 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         const int k = f.passes[i].k;
         size_t j = i;
         int size = 0;
-        while (j < f.passes.size() && f.passes[j].k == k) size = std::max(size, f.passes[j++].bytes);
+        while (j < f.passes.size() && f.passes[j].k == k)
+            size = std::max(size, f.passes[j++].bytes);
         std::vector<int> kinds;
         for (int p = 0; p < f.kinds; ++p)
             if (k <= f.K[p]) kinds.push_back(p);
@@ -247,13 +266,29 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     return true;
 }
 
+void check_options(const golden::Params& p) {
+    // SPEC A.9 options the firmware does not run (docs/firmware.md, section 10):
+    // refused up front, never a wrong map.
+    const golden::Params off;
+    std::string missing;
+    auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
+    if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
+    if (p.kc != off.kc) add("--kc " + std::to_string(p.kc));
+    if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
+    if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
+    if (!missing.empty())
+        throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
+                            " (it runs SPEC A.1-A.7 with --ad-max and --mode joint; needs "
+                            "--dissim ad, --kc 0, --agg-rx 0, --agg-ry 0; the golden runs all)");
+}
+
 void check_range(const golden::Params& p) {
     const int64_t w = wm_max(p);
     const int64_t od = int64_t{p.Wo} + p.Wd;
     if (std::max(w, od) > kMaxSpread) {
         std::ostringstream os;
-        os << "firmware: cost spread max(km*255 + kb*gb, Wo + Wd) = " << std::max(w, od)
-           << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
+        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb, Wo + Wd) = "
+           << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
            << "; lower --km, --kb, --gb, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
@@ -279,6 +314,13 @@ uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t
 namespace {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
                               bool tiny);
+}
+
+golden::Params firmware_part(const golden::Params& p) {
+    golden::Params q = golden::paper_part(p);
+    q.ad_max = p.ad_max;  // run in the firmware (WM_ADD, DP_MEET)
+    q.mode = p.mode;
+    return q;
 }
 
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
@@ -324,11 +366,18 @@ bool place_tiny(ForwardPlan& f, int mem) {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
                               bool tiny) {
     golden::validate_for_width(p, N);
+    check_options(p);
     check_range(p);
     ForwardPlan f;
     f.N = N;
     f.D = p.D;
-    f.bidir = p.mode == golden::Mode::Bidir;
+    f.joint = p.mode == golden::Mode::Joint;
+    f.bidir = p.mode == golden::Mode::Bidir || f.joint;
+    if (f.joint && tiny)
+        throw FirmwareError(
+            "firmware: --mode joint with the vote needs at least 3 lines per batch (6 PEs; "
+            "the one-line-per-batch mode of 2 to 5 PEs does not keep the meeting level): have " +
+            std::to_string(cfg.pes) + " PEs");
     if (f.bidir) {
         f.s = golden::resolve_seed_col(p, N);
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
@@ -349,7 +398,9 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     f.kr = f.kmax;
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
-    if (f.bidir)
+    if (f.joint)
+        kl = std::max({kl, f.s + p.D, N + p.D - 2 - f.s});
+    else if (f.bidir)
         kl = std::max({kl, f.s + p.D - 1, N - 1 - f.s});
     else
         kl = std::max(kl, N);
@@ -444,14 +495,17 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
         *hi = f.N - 1;
         if (!f.bidir) return;
         if (kind == 0)
-            *hi = img == 0 ? std::min(f.N - 1, f.s + f.D - 2) : f.s - 1;
+            *hi = img == 0 ? std::min(f.N - 1, f.s + f.D - (f.joint ? 1 : 2))
+                           : (f.joint ? f.s : f.s - 1);
         else
             *lo = f.s + 1;
     };
     // Size of [lo, hi] (lanes, within 0..P-1) inside the arc [a, a + len) mod P.
     auto overlap = [&](int lo, int hi, int a, int len) {
         if (lo > hi) return 0;
-        auto lin = [&](int b0, int b1) { return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1); };
+        auto lin = [&](int b0, int b1) {
+            return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1);
+        };
         int c = lin(a, std::min(a + len, P));
         if (a + len > P) c += lin(0, a + len - P);
         return c;
@@ -537,9 +591,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
-    if (golden::uses_options(p))  // SPEC A.9: golden only until the firmware implements them
-        throw FirmwareError("the DP firmware implements SPEC A.1-A.7 only, not the A.9 options " +
-                            golden::options_string(p) + " (use --preset paper)");
+    check_options(p);
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
@@ -547,7 +599,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
-    const bool bidir = p.mode == golden::Mode::Bidir;
+    const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;
     const int span = bidir ? 2 : 1;
     fp.lpb = std::min(fp.P / span, 255);
     // Too few lines per batch for the vote across batches: one line at a
@@ -598,8 +650,8 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     Relayout& rl = fp.rl;
     const int P = fp.P;
     const int W0 = seg_width(fp, 0);
-    rl.modular = P % 2 == 0 && span * fp.lpb == P && span * fp.hbmax == P && fp.nseg == 1 &&
-                 W0 <= P / 2;
+    rl.modular =
+        P % 2 == 0 && span * fp.lpb == P && span * fp.hbmax == P && fp.nseg == 1 && W0 <= P / 2;
     if (rl.modular) {
         rl.base = 0;
         if (bidir) {
@@ -661,8 +713,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     if (fp.out + fp.hbmax > mem) {
         std::ostringstream os;
         os << "does not fit: needs " << fp.out + fp.hbmax
-           << " bytes of local memory per PE for the output rows (have " << mem
-           << ", mem_bytes)";
+           << " bytes of local memory per PE for the output rows (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
     end = std::max(end, fp.out + fp.hbmax);
@@ -710,6 +761,8 @@ void equ(std::ostringstream& os, const char* name, int64_t v) {
 
 void dp_constants(std::ostringstream& os, const golden::Params& p, const ForwardPlan& f) {
     equ(os, "MODE", f.bidir ? 1 : 0);
+    equ(os, "JOINT", f.joint ? 1 : 0);
+    equ(os, "JM", f.bidir ? std::min(f.D - 1, f.N - 1 - f.s) : 0);  // top level of site s
     equ(os, "N", f.N);
     equ(os, "D", f.D);
     equ(os, "S", f.s);
@@ -717,9 +770,13 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "KM", p.km);
     equ(os, "KB", p.kb);
     equ(os, "GB", p.gb);
+    equ(os, "ADMAX", std::min(255, p.ad_max));
     equ(os, "WO", p.Wo);
     equ(os, "WD", p.Wd);
-    equ(os, "FRAME", p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2);
+    equ(os, "FRAME",
+        p.frame == golden::Frame::Cyclopean ? 0
+        : p.frame == golden::Frame::Left    ? 1
+                                            : 2);
     equ(os, "VOTE", p.vote ? 1 : 0);
     equ(os, "KMAX", f.kmax);
     equ(os, "KLEFT", f.bidir ? f.K[0] : 0);
@@ -744,12 +801,16 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     // the left wavefront's last output position + 1 (the merge band ends there)
     int band = 0;
     if (f.bidir) {
-        const int fr = p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2;
-        const int last = fr == 0 ? f.s - 1 + (f.D - 1) / 2 : fr == 1 ? f.s - 1 + f.D - 1 : f.s - 1;
+        const int fr = p.frame == golden::Frame::Cyclopean ? 0
+                       : p.frame == golden::Frame::Left    ? 1
+                                                           : 2;
+        const int e = f.joint ? f.s : f.s - 1;  // the left PE's last event site
+        const int last = fr == 0 ? e + (f.D - 1) / 2 : fr == 1 ? e + f.D - 1 : e;
         band = std::min(f.N, last + 1);
     }
     equ(os, "BANDE", band);
-    equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - 2)) : 0);
+    equ(os, "EXCHN",
+        f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {

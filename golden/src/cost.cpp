@@ -208,7 +208,8 @@ const C* CostVolume<C>::line(int y) {
         const C* prev = dst - D;
         const C* in = vs + static_cast<size_t>(i + 2 * rx_) * D;
         const C* gone = vs + static_cast<size_t>(i - 1) * D;
-        for (size_t j = 0; j < D; ++j) dst[j] = prev[j] + in[j] - gone[j];
+        // prev - gone first: prev + in can leave the type even when the sum fits
+        for (size_t j = 0; j < D; ++j) dst[j] = prev[j] - gone[j] + in[j];
     }
     return out_.data();
 }

@@ -44,7 +44,7 @@ Params paper_part(const Params& p) {
     return q;
 }
 
-OptionCost estimate_options(const Params& p, int N) {
+OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
     OptionCost c;
     if (!uses_options(p)) return c;
     const int D = p.D;
@@ -63,7 +63,7 @@ OptionCost estimate_options(const Params& p, int N) {
     const int cb = bytes_of(cmax);                    // one pixel term
     const int hb = bytes_of((2 * rx + 1) * cmax);     // its sum over the sites
     const int sb = bytes_of(window_terms(p) * cmax);  // the whole window
-    if (p.ad_max < 255) {
+    if (p.ad_max < 255 && !in_firmware) {
         c.per_node += 1;  // mini
         c.items.push_back(fmt("ad-max", 1, 0, 0));
     }
@@ -105,7 +105,7 @@ OptionCost estimate_options(const Params& p, int N) {
         c.per_node += node;
         c.items.push_back(fmt("agg-ry", node, 0, 0));
     }
-    if (p.mode == Mode::Joint) {
+    if (p.mode == Mode::Joint && !in_firmware) {
         // E(s, .) to the partner PE (3 bytes, 1 hop, stored), 24-bit
         // compare-and-select with the level index, js back (1 hop).
         c.per_batch += 3 * D + 3 * D + 8 * D + 20;

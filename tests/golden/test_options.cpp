@@ -590,6 +590,11 @@ BOOST_AUTO_TEST_CASE(cost_estimate_arithmetic) {
     BOOST_TEST(c.local_bytes == 232 + 16 + 4 * 64);
     BOOST_TEST(c.cycles == 79 * 64 * 41 + 232 * 37 + 916);
     BOOST_TEST(g::estimate_options(g::preset("paper"), 128).cycles == 0);
+    // ad-max and joint run in the firmware: measured, not estimated
+    const g::OptionCost m = g::estimate_options(q, 128, /*in_firmware=*/true);
+    BOOST_TEST(m.per_node == 11.0 + 9 + 20);
+    BOOST_TEST(m.per_batch == 0);
+    BOOST_TEST(m.cycles == 79 * 64 * 40 + 232 * 37);
     const g::Params pp = g::paper_part(q);
     BOOST_TEST(!g::uses_options(pp));
     BOOST_TEST((pp.mode == g::Mode::Bidir && pp.km == q.km && pp.Wo == q.Wo));

@@ -63,7 +63,8 @@ struct Transfer {
 // Forward-pass plan of one scanline length N (shared by all lines).
 struct ForwardPlan {
     int N = 0, D = 0;
-    bool bidir = false;
+    bool bidir = false;  // two PEs per line (bidir or joint)
+    bool joint = false;  // SPEC A.9 joint: kind 0 = sites 0..s forward, kind 1 = s..N-1 mirrored
     int s = 0;       // seed column (bidir)
     int ds = -1;     // seed disparity, -1 = free
     int kinds = 1;   // 1 (single) or 2 (bidir: 0 = left wavefront, 1 = right)
@@ -102,6 +103,13 @@ struct ForwardPlan {
     uint8_t pointer(int kind, int k, int j, const std::function<uint8_t(uint32_t)>& mem,
                     const std::function<uint8_t(uint32_t)>& ext) const;
 };
+
+// The part of `p` the firmware runs (docs/firmware.md, section 10): the
+// same parameters with the SPEC A.9 options it does not implement turned
+// off (dissim ad, kc 0, no aggregation; a census-only cost keeps km = 1);
+// --ad-max and --mode joint stay. For the trade-off table's measured
+// part; a parameter set with those options is refused by plan_frame.
+golden::Params firmware_part(const golden::Params& p);
 
 // Checks the cost range and plans the forward pass and its memory for
 // scanlines of length N (lines on consecutive PEs, the test layout); throws

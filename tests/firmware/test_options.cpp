@@ -1,0 +1,245 @@
+// The SPEC A.9 options on the firmware (docs/firmware.md, section 10): the
+// ones it runs are bit-exact with the golden over random scenes, sizes, D,
+// modes and PE counts; the ones it does not run are refused up front with a
+// message that names them (never a wrong map).
+#define BOOST_TEST_MODULE firmware_options
+#include <boost/test/unit_test.hpp>
+
+#include "fw_test_util.hpp"
+#include "imap/golden/estimate.hpp"
+
+using namespace fwtest;
+
+namespace {
+
+// A random parameter set with the A.9 options the firmware implements.
+g::Params random_option_params(std::mt19937& rng, int N) {
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    g::Params p = random_params(rng, N);
+    const int pick = uni(0, 3);
+    p.ad_max = pick == 0 ? uni(0, 3) : pick == 1 ? uni(4, 40) : pick == 2 ? 16 : uni(41, 255);
+    if (uni(0, 2) == 0) {  // the quality preset's pixel weights
+        p.km = 1;
+        p.kb = 0;
+        p.gb = 0;
+        p.Wo = p.Wd = uni(0, 400);
+    }
+    if (p.km == 0 && p.kb == 0) p.km = 1;
+    if (N >= 2 && uni(0, 2) == 0) {  // SPEC A.9 joint: bidir's seed rules
+        p.mode = g::Mode::Joint;
+        if (!p.seed_disp.free) {
+            const int s = g::resolve_seed_col(p, N);
+            p.seed_disp.value = uni(0, std::min(p.D - 1, N - 1 - s));
+        }
+    }
+    return p;
+}
+
+std::string refusal(const g::Params& p, const g::Roi& roi) {
+    isa::MachineConfig cfg;
+    try {
+        fw::plan_frame(p, roi, cfg);
+    } catch (const fw::FirmwareError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ad_max_random_frames) {
+    std::mt19937 rng(917);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int it = 0; it < 40; ++it) {
+        const int W = uni(4, 48), Hi = uni(1, 14);
+        g::Roi roi;
+        roi.w = uni(2, W);
+        roi.h = uni(1, Hi);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, Hi - roi.h);
+        const g::Params p = random_option_params(rng, roi.w);
+        // joint needs 3 lines per batch with the vote when the ROI is taller
+        const int P = uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                           << " ad-max=" << p.ad_max << " vote=" << p.vote
+                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+            check_frame(p, fr, roi, P);
+        }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(ad_max_grid_modes_and_d) {
+    std::mt19937 rng(31);
+    const Frame fr = random_frame(rng, 72, 24, 32);
+    const g::Roi roi{4, 2, 64, 20};
+    for (int mode = 0; mode < 2; ++mode)
+        for (int ad : {0, 1, 7, 16, 254})
+            for (int D : {1, 16, 32}) {
+                g::Params p;
+                p.D = D;
+                p.mode = mode ? g::Mode::Bidir : g::Mode::Single;
+                p.km = 1;
+                p.kb = 0;
+                p.gb = 0;
+                p.Wo = p.Wd = 40;
+                p.ad_max = ad;
+                BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h) << " ad-max=" << ad) {
+                    check_frame(p, fr, roi, 64);
+                }
+            }
+}
+
+BOOST_AUTO_TEST_CASE(ad_max_headline_paper_weights) {
+    std::mt19937 rng(5);
+    g::Params p;
+    p.D = 64;
+    p.ad_max = 24;
+    const Frame fr = random_frame(rng, 160, 140, 40);
+    check_frame(p, fr, g::Roi{16, 6, 128, 128}, 256);
+}
+
+BOOST_AUTO_TEST_CASE(ad_max_enters_the_16_bit_range_check) {
+    g::Params p;
+    p.km = 200;  // 200 * 255 = 51,000 > 32,766: refused without truncation
+    p.kb = 0;
+    const g::Roi roi{0, 0, 96, 4};
+    BOOST_TEST(refusal(p, roi).find("exceeds the 16-bit costs' range") != std::string::npos);
+    p.ad_max = 100;  // 200 * 100 = 20,000: accepted
+    BOOST_TEST(refusal(p, roi).empty());
+}
+
+BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
+    const g::Roi roi{0, 0, 96, 8};
+    struct Case {
+        const char* name;
+        void (*set)(g::Params&);
+        const char* expect;
+    };
+    const Case cases[] = {
+        {"bt", [](g::Params& p) { p.dissim = g::Dissim::Bt; }, "--dissim bt"},
+        {"kc", [](g::Params& p) { p.kc = 4; }, "--kc 4"},
+        {"agg-rx", [](g::Params& p) { p.agg_rx = 2; }, "--agg-rx 2"},
+        {"agg-ry", [](g::Params& p) { p.agg_ry = 1; }, "--agg-ry 1"},
+    };
+    for (const Case& c : cases) {
+        g::Params p;
+        c.set(p);
+        const std::string msg = refusal(p, roi);
+        BOOST_TEST_CONTEXT(c.name << ": " << msg) {
+            BOOST_TEST(msg.find("does not implement") != std::string::npos);
+            BOOST_TEST(msg.find(c.expect) != std::string::npos);
+        }
+        isa::MachineConfig cfg;  // the forward-pass planner refuses them too
+        BOOST_CHECK_THROW(fw::plan_forward(p, roi.w, cfg), fw::FirmwareError);
+    }
+    const std::string q = refusal(g::preset("quality"), g::Roi{0, 0, 128, 128});
+    BOOST_TEST(q.find("option(s) --kc 4, --agg-rx 2, --agg-ry 2 (") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
+    // eval --tradeoff measures firmware_part(p) at the headline case: it must
+    // keep what the firmware implements (ad-max) and be accepted.
+    const g::Roi roi{0, 0, 128, 128};
+    for (const auto& v : g::tradeoff_variants()) {
+        g::Params p = v.p;
+        p.D = 64;
+        const g::Params f = fw::firmware_part(p);
+        BOOST_TEST_CONTEXT(v.name) {
+            BOOST_TEST(f.ad_max == p.ad_max);
+            BOOST_TEST((f.mode == p.mode));
+            BOOST_TEST(refusal(f, roi).empty());
+        }
+    }
+    g::Params q = g::preset("quality");
+    q.D = 64;
+    BOOST_TEST(!refusal(q, roi).empty());
+}
+
+BOOST_AUTO_TEST_CASE(joint_votes_seeds_frames_batches) {
+    // SPEC A.9 joint on the firmware: vote on/off, free and fixed seeds, a
+    // fixed seed column, every frame, one batch (64 PEs) and batches of 4
+    // lines (8 PEs, the ROI is taller than the array).
+    std::mt19937 rng(202);
+    const Frame fr = random_frame(rng, 72, 40, 24);
+    const g::Roi roi{4, 3, 64, 34};
+    const g::Frame frames[] = {g::Frame::Cyclopean, g::Frame::Left, g::Frame::Right};
+    for (int P : {8, 64})
+        for (int vote = 0; vote < 2; ++vote)
+            for (int seed = 0; seed < 3; ++seed)
+                for (g::Frame f : frames) {
+                    g::Params p;
+                    p.D = 24;
+                    p.mode = g::Mode::Joint;
+                    p.vote = vote != 0;
+                    p.frame = f;
+                    if (seed == 1) {
+                        p.seed_disp.free = false;
+                        p.seed_disp.value = 5;
+                    } else if (seed == 2) {
+                        p.seed_col.kind = g::SeedColKind::Fixed;
+                        p.seed_col.value = 9;
+                        p.ad_max = 16;
+                    }
+                    BOOST_TEST_CONTEXT("P=" << P << " " << describe(p, roi.w, roi.h)
+                                            << " vote=" << p.vote << " frame=" << g::to_string(f)) {
+                        check_frame(p, fr, roi, P);
+                    }
+                }
+}
+
+BOOST_AUTO_TEST_CASE(joint_edges_d_and_headline) {
+    std::mt19937 rng(77);
+    const Frame fr = random_frame(rng, 160, 140, 40);
+    for (int D : {1, 2, 17, 32}) {  // D = 32 = the ROI width: every level of site s
+        g::Params p;
+        p.mode = g::Mode::Joint;
+        p.D = D;
+        BOOST_TEST_CONTEXT("D=" << D) {
+            check_frame(p, fr, g::Roi{3, 2, 32, 12}, 64);
+        }
+    }
+    for (int c : {1, 30}) {  // the seed column at both ends of a 32-wide ROI
+        g::Params p;
+        p.mode = g::Mode::Joint;
+        p.D = 12;
+        p.seed_col.kind = g::SeedColKind::Fixed;
+        p.seed_col.value = c;
+        BOOST_TEST_CONTEXT("seed col " << c) {
+            check_frame(p, fr, g::Roi{0, 0, 32, 9}, 32);
+        }
+    }
+    g::Params p;  // ROI width 2, one line
+    p.mode = g::Mode::Joint;
+    p.D = 2;
+    check_frame(p, fr, g::Roi{7, 7, 2, 1}, 4);
+    g::Params q;  // the headline with the quality preset's pixel weights
+    q.mode = g::Mode::Joint;
+    q.D = 64;
+    q.km = 1;
+    q.kb = 0;
+    q.gb = 0;
+    q.ad_max = 16;
+    q.Wo = q.Wd = 400;
+    uint64_t cycles = 0;
+    check_frame(q, fr, g::Roi{16, 6, 128, 128}, 256, &cycles);
+    BOOST_TEST_MESSAGE("joint headline cycles: " << cycles);
+}
+
+BOOST_AUTO_TEST_CASE(joint_one_line_per_batch_is_refused) {
+    g::Params p;
+    p.mode = g::Mode::Joint;
+    p.D = 8;
+    isa::MachineConfig cfg;
+    cfg.pes = 4;  // 2 lines per batch: the one-line-per-batch mode with the vote
+    try {
+        fw::plan_frame(p, g::Roi{0, 0, 32, 8}, cfg);
+        BOOST_ERROR("joint with 4 PEs and the vote was accepted");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()).find("needs at least 3 lines per batch") !=
+                   std::string::npos);
+    }
+    p.vote = false;  // without the vote, 2 lines per batch are fine
+    std::mt19937 rng(3);
+    check_frame(p, random_frame(rng, 32, 8, 8), g::Roi{0, 0, 32, 8}, 4);
+}
