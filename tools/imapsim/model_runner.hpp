@@ -31,14 +31,17 @@ imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
 // --model rtl / lockstep options (docs/rtl.md). set_rtl_flags() hands them
 // to run_model (kept out of its signature).
 struct RtlFlags {
-    uint64_t lockstep_interval = 1;
-    std::string inject_fault;  // INSTR:PE:REG:MASK
-    std::string trace_pes;     // a:b, none, or empty = all
+    std::string inject_fault;     // INSTR:PE:REG:MASK
+    std::string mutant;           // planted bug (mutation-check configuration)
+    std::string lockstep_waves = "rtl_divergence.vcd";  // waves before a divergence, "" none
 };
 void add_rtl_flags(CLI::App* app, RtlFlags& f);
 void set_rtl_flags(const RtlFlags& f);
 
 std::string model_names();                  // "tlm, core" ...
+// The RTL design's synthesized area (cells per PE and per CP), one line;
+// nothing when the binary has no RTL.
+void print_rtl_area();
 void check_model_name(const std::string&);  // UserError if unknown
 
 struct ModelRun {
