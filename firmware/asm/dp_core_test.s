@@ -1,9 +1,14 @@
 ; Stand-alone DP core: the host fills every PE's line buffers, the program
-; runs set-up, start column, forward pass, vote + backtrack and merge, and
-; the host reads the output lines from MAP (right-wavefront PEs in bidir).
+; runs set-up, start column, forward pass, backtrack with vote and merge;
+; the host reads pixel x of line y from MAP on PE 2y + (x & 1) (bidir) or y.
+.include "dp_setup.inc"
 .include "dp_init.inc"
 .include "dp_forward.inc"
 .include "dp_back.inc"
+        FWD_BODIES
+        jmp     start
+        BT_COLUMN
+start:
         cli     c8, #0
         cli     c9, #HB
         DP_SETUP

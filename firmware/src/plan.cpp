@@ -1,37 +1,330 @@
 #include "imap/firmware/plan.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <sstream>
 
 #include "imap/isa/assembler.hpp"
 
 namespace imap::firmware {
 
+namespace {
+
+constexpr int kKBlockSize = 32;  // per-PE constant block (dp_setup.inc checks it)
+constexpr int kNever = INT_MAX;
+
+int ceil_div(int a, int b) {
+    return (a + b - 1) / b;
+}
+
+int wm_max(const golden::Params& p) {
+    return p.km * 255 + p.kb * p.gb;
+}
+
+// The level range of each kind at every column (docs/firmware.md, section 1).
+void column_ranges(const golden::Params& p, int N, ForwardPlan& f) {
+    const int D = p.D;
+    if (!f.bidir) {
+        f.kinds = 1;
+        f.K[0] = N;
+        f.lo[0].assign(N + 1, 0);
+        f.hi[0].resize(N + 1);
+        for (int k = 0; k <= N; ++k) f.hi[0][k] = k == 0 ? D - 1 : std::min(D - 1, N - k);
+        f.kmax = N;
+        return;
+    }
+    f.kinds = 2;
+    const int s = f.s, ds = f.ds;
+    // Left wavefront (kind 0): column k is site s-1-k, level mirrored j' = D-1-j.
+    f.K[0] = s;
+    f.lo[0].resize(s + 1);
+    f.hi[0].assign(s + 1, D - 1);
+    for (int k = 0; k <= s; ++k) {
+        int lo = std::max(0, D - 1 - N + s - k);
+        if (ds >= 0) lo = std::max(lo, D - 1 - ds - k);
+        f.lo[0][k] = lo;
+    }
+    // Right wavefront (kind 1): column k is site s+k.
+    f.K[1] = N - 1 - s;
+    f.lo[1].resize(f.K[1] + 1);
+    f.hi[1].resize(f.K[1] + 1);
+    for (int k = 0; k <= f.K[1]; ++k) {
+        f.lo[1][k] = std::max(0, (ds >= 0 ? ds : 0) - k);
+        f.hi[1][k] = std::min(D - 1, N - 1 - s - k);
+    }
+    f.kmax = std::max(f.K[0], f.K[1]);
+}
+
+// The passes of every column: one shared pass where the kinds agree on the
+// first slot, else one masked pass per kind.
+void column_passes(ForwardPlan& f) {
+    f.passes.clear();
+    f.slots = 0;
+    const int D = f.D;
+    for (int k = 1; k <= f.kmax; ++k) {
+        int act[2], na = 0;
+        for (int p = 0; p < f.kinds; ++p)
+            if (k <= f.K[p]) act[na++] = p;
+        auto donly = [&](int p) { return f.lo[p][k] < f.lo[p][k - 1]; };
+        const bool shared = na == 2 && f.lo[0][k] == f.lo[1][k] && donly(0) == donly(1);
+        if (f.kinds == 1 || shared) {
+            ForwardPass ps;
+            ps.k = k;
+            ps.kind = -1;
+            ps.jlo = f.lo[act[0]][k];
+            int hi = f.hi[act[0]][k];
+            if (na == 2) hi = std::max(hi, f.hi[act[1]][k]);
+            ps.n = hi - ps.jlo + 1;
+            ps.donly = donly(act[0]);
+            ps.pad = hi == D - 1;
+            ps.bytes = ceil_div(ps.n, 4);
+            f.passes.push_back(ps);
+            f.slots += ps.n;
+            continue;
+        }
+        for (int i = 0; i < na; ++i) {
+            const int p = act[i];
+            ForwardPass ps;
+            ps.k = k;
+            ps.kind = p;
+            ps.jlo = f.lo[p][k];
+            ps.n = f.hi[p][k] - ps.jlo + 1;
+            ps.donly = donly(p);
+            ps.pad = f.hi[p][k] == D - 1;
+            ps.bytes = ceil_div(ps.n, 4);
+            f.passes.push_back(ps);
+            f.slots += ps.n;
+        }
+    }
+}
+
+// Bytes of a pass holding kind p's pointers (a shared pass computes the
+// union of the kinds' ranges; a kind's pointers are the bytes up to its top).
+int kind_bytes(const ForwardPlan& f, const ForwardPass& ps, int p) {
+    if (ps.kind >= 0) return ps.kind == p ? ps.bytes : 0;
+    if (ps.k > f.K[p]) return 0;
+    return ceil_div(f.hi[p][ps.k] - ps.jlo + 1, 4);
+}
+
+struct FreeMap {
+    int mem = 0;
+    std::vector<int> avail[2];  // first column from which an address may hold pointers
+    std::vector<char> used[2];
+
+    bool free_for(int p, int a, int k) const {
+        return !used[p][a] && avail[p][a] <= k;
+    }
+    // Lowest address of `len` bytes free for every kind in `kinds` from column k.
+    int find(int len, const std::vector<int>& kinds, int k, int from = 0) const {
+        for (int a = from; a + len <= mem; ++a) {
+            bool ok = true;
+            for (int b = a; b < a + len && ok; ++b)
+                for (int p : kinds) ok = ok && free_for(p, b, k);
+            if (ok) return a;
+        }
+        return -1;
+    }
+};
+
+// Places the pointer columns: the first `spill` columns go to the external
+// memory (staged at the start of the pointer region), the others on chip;
+// false if they do not fit.
+bool place_pointers(ForwardPlan& f, int mem, int spill) {
+    FreeMap fm;
+    fm.mem = mem;
+    for (int p = 0; p < 2; ++p) {
+        fm.avail[p].assign(mem, kNever);
+        fm.used[p].assign(mem, 0);
+        for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
+        for (int i = 0; i <= f.kr; ++i) fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
+        for (int i = 0; i <= f.kl; ++i) fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
+    }
+    for (int p = 0; p < 2; ++p) f.ptr[p].assign(f.kmax + 1, PointerColumn{});
+    f.spills.clear();
+    f.reloads.clear();
+    const int stage_cap = std::min(mem - f.preg, 4096);
+    int stage_off = 0, ext = 0, block_ext = 0;
+    size_t i = 0;
+    while (i < f.passes.size()) {
+        const int k = f.passes[i].k;
+        size_t j = i;
+        int size = 0;
+        while (j < f.passes.size() && f.passes[j].k == k) size = std::max(size, f.passes[j++].bytes);
+        std::vector<int> kinds;
+        for (int p = 0; p < f.kinds; ++p)
+            if (k <= f.K[p]) kinds.push_back(p);
+        if (k <= spill) {
+            if (size > stage_cap) return false;
+            if (stage_off + size > stage_cap) {
+                f.spills.push_back({f.preg, block_ext, stage_off, static_cast<int>(i) - 1});
+                block_ext = ext;
+                stage_off = 0;
+            }
+            for (size_t q = i; q < j; ++q) {
+                f.passes[q].addr = f.preg + stage_off;
+                for (int p = 0; p < f.kinds; ++p) {
+                    const int b = kind_bytes(f, f.passes[q], p);
+                    if (b == 0) continue;
+                    f.ptr[p][k] = {-1, f.passes[q].jlo, b, ext};
+                }
+            }
+            stage_off += size;
+            ext += size;
+            if (k == spill) {
+                f.spills.push_back({f.preg, block_ext, stage_off, static_cast<int>(j) - 1});
+                block_ext = ext;
+                stage_off = 0;
+            }
+        } else {
+            const int a = fm.find(size, kinds, k);
+            if (a < 0) return false;
+            for (size_t q = i; q < j; ++q) {
+                f.passes[q].addr = a;
+                for (int p = 0; p < f.kinds; ++p) {
+                    const int b = kind_bytes(f, f.passes[q], p);
+                    if (b == 0) continue;
+                    for (int x = a; x < a + b; ++x) fm.used[p][x] = 1;
+                    f.ptr[p][k] = {a, f.passes[q].jlo, b, -1};
+                }
+            }
+            // A pass writes `size` bytes for every kind it runs on; bytes
+            // beyond a kind's own pointers are free for that kind afterwards.
+        }
+        i = j;
+    }
+    f.ext_needed = ext;
+
+    // After the forward pass: the output line (free of every on-chip column),
+    // then each spilled column reloaded just before the backtrack reaches it,
+    // into memory free of the map and of the on-chip columns still ahead
+    // (xld writes every PE, so free for every kind).
+    for (int p = 0; p < 2; ++p)
+        for (int a = 0; a < mem; ++a) fm.avail[p][a] = a < f.kblk + kKBlockSize ? kNever : 0;
+    const std::vector<int> all = {0, 1};
+    f.map = fm.find(f.N, all, 0);
+    if (f.map < 0) return false;
+    int top = std::max(f.preg, f.map + f.N);
+    for (const Transfer& t : f.spills) top = std::max(top, t.local + t.len);
+    if (spill > 0) {
+        FreeMap rm = fm;  // used: on-chip columns; the map is added below
+        for (int p = 0; p < 2; ++p)
+            for (int x = f.map; x < f.map + f.N; ++x) rm.used[p][x] = 1;
+        // column -> its on-chip bytes per kind (to release them as the backtrack passes)
+        for (int k = f.kmax; k >= 1; --k) {
+            if (k > spill) {
+                for (int p = 0; p < f.kinds; ++p) {
+                    const PointerColumn& c = f.ptr[p][k];
+                    if (c.bytes == 0 || c.ext >= 0) continue;
+                    for (int x = c.addr; x < c.addr + c.bytes; ++x) rm.used[p][x] = 0;
+                }
+                continue;
+            }
+            int size = 0, ext_addr = -1;
+            for (int p = 0; p < f.kinds; ++p) {
+                const PointerColumn& c = f.ptr[p][k];
+                if (c.bytes == 0) continue;
+                ext_addr = c.ext;
+            }
+            for (const ForwardPass& ps : f.passes)
+                if (ps.k == k) size = std::max(size, ps.bytes);
+            if (ext_addr < 0 || size == 0) continue;
+            const int a = rm.find(size, all, 0);
+            if (a < 0) return false;
+            f.reloads.push_back({a, ext_addr, size, k});
+            for (int p = 0; p < f.kinds; ++p)
+                if (f.ptr[p][k].bytes > 0) f.ptr[p][k].addr = a;
+            top = std::max(top, a + size);
+        }
+    }
+    // Highest local address in use by the DP.
+    for (int p = 0; p < 2; ++p)
+        for (int a = mem - 1; a >= 0; --a)
+            if (fm.used[p][a]) {
+                top = std::max(top, a + 1);
+                break;
+            }
+    f.mem_needed = top;
+    return true;
+}
+
+void check_range(const golden::Params& p) {
+    const int64_t w = wm_max(p);
+    const int64_t od = int64_t{p.Wo} + p.Wd;
+    if (std::max(w, od) > kMaxSpread) {
+        std::ostringstream os;
+        os << "firmware: cost spread max(km*255 + kb*gb, Wo + Wd) = " << std::max(w, od)
+           << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
+           << "; lower --km, --kb, --gb, --Wo or --Wd)";
+        throw FirmwareError(os.str());
+    }
+}
+
+}  // namespace
+
 std::string firmware_dir() {
     return IMAP_FIRMWARE_DIR;
 }
 
-ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
-    golden::validate_for_width(p, N);
-    // Wm is formed in 16 bits; every reachable cost stays below the golden's
-    // bound B, and unreachable ones in [INF, INF + B): both need B <= 2^23.
-    const int64_t wm_max = int64_t{p.km} * 255 + int64_t{p.kb} * p.gb;
-    if (wm_max >= 65536) {
-        std::ostringstream os;
-        os << "firmware: match cost km*255 + kb*gb = " << wm_max
-           << " does not fit the 16-bit match term (needs < 65536; lower --km or --kb)";
-        throw FirmwareError(os.str());
-    }
-    const int64_t w = std::max({wm_max, int64_t{p.Wo}, int64_t{p.Wd}});
-    const int64_t bound = (2 * int64_t{N} + p.D + 4) * w;
-    if (bound > kInf) {
-        std::ostringstream os;
-        os << "firmware: cost bound (2N + D + 4) * max(Wm, Wo, Wd) = " << bound
-           << " exceeds the 24-bit cost range (needs <= " << kInf
-           << "; lower the weights or the ROI width)";
-        throw FirmwareError(os.str());
-    }
+uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t(uint32_t)>& mem,
+                             const std::function<uint8_t(uint32_t)>& ext) const {
+    const PointerColumn& c = ptr[kind][k];
+    const int idx = j - c.base;
+    const int byte = idx >> 2, field = idx & 3;
+    const uint8_t b = c.ext >= 0 ? ext(static_cast<uint32_t>(c.ext + byte))
+                                 : mem(static_cast<uint32_t>(c.addr + byte));
+    const int bits = (b >> (6 - 2 * field)) & 3;
+    return static_cast<uint8_t>((bits & 1) ? 2 : (bits >> 1));
+}
 
+namespace {
+ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
+                              bool tiny);
+}
+
+ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
+    return plan_forward_impl(p, N, cfg, false);
+}
+
+namespace {
+// Every pointer table in the external memory (three rotating slots of
+// ext_table bytes), the backtrack voting from three reloaded columns
+// (docs/firmware.md, section 4: arrays of 2 to 5 PEs).
+bool place_tiny(ForwardPlan& f, int mem) {
+    if (!place_pointers(f, mem, f.kmax)) return false;
+    // place_pointers reloaded each column into the lowest free bytes: now
+    // one buffer for the own column and two for the neighbours' columns.
+    int size = 0;
+    for (const ForwardPass& ps : f.passes) size = std::max(size, ps.bytes);
+    f.reloads.clear();
+    const int lo = f.kblk + kKBlockSize;
+    auto overlaps_map = [&](int a, int n) { return a < f.map + f.N && f.map < a + n; };
+    int a = lo, bufs[3], got = 0;
+    while (got < 3 && a + size <= mem) {
+        if (overlaps_map(a, size)) {
+            a = f.map + f.N;
+            continue;
+        }
+        bufs[got++] = a;
+        a += size;
+    }
+    if (got < 3) return false;
+    f.tiny_buf[0] = bufs[0];
+    f.tiny_buf[1] = bufs[1];
+    f.tiny_buf[2] = bufs[2];
+    for (int p = 0; p < f.kinds; ++p)
+        for (int k = 1; k <= f.kmax; ++k)
+            if (f.ptr[p][k].bytes > 0) f.ptr[p][k].addr = bufs[0];
+    f.ext_table = static_cast<int>(f.ext_needed);
+    f.ext_needed = 3 * int64_t{f.ext_table};
+    f.mem_needed = std::max(f.mem_needed, bufs[2] + size);
+    f.tiny = true;
+    return true;
+}
+
+ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
+                              bool tiny) {
+    golden::validate_for_width(p, N);
+    check_range(p);
     ForwardPlan f;
     f.N = N;
     f.D = p.D;
@@ -39,44 +332,214 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     if (f.bidir) {
         f.s = golden::resolve_seed_col(p, N);
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
-        f.kmax = std::max(N - 1 - f.s, f.s);
-    } else {
-        f.kmax = N;
     }
-    f.dq = (p.D + 3) / 4;
-    int a = 0;
-    f.imgr = a;
-    a += f.kmax + 1;
-    f.imgl = a;
-    a += f.kmax + p.D + 1;
-    f.c0 = a;
-    a += p.D + 1;
-    f.c1 = a;
-    a += p.D + 1;
-    f.c2 = a;
-    a += p.D + 1;
-    f.pbuf = a;
-    a += f.dq;
-    f.vbuf = a;
-    a += f.dq;
-    f.map = f.imgr;  // the output line reuses the line buffers after the forward pass
-    f.kbase = a;
-    a += 21;  // K_SIZE in dp_back.inc + 4 bytes of relayout.inc
-    f.mem_needed = a;
-    f.ext_needed = int64_t{f.kmax} * f.dq;
-    if (f.mem_needed > int64_t{cfg.mem_bytes} || f.ext_needed > int64_t{cfg.ext_bytes}) {
+    column_ranges(p, N, f);
+    column_passes(f);
+    for (int i = 0; i < N; ++i) f.valid_states += golden::levels_at(i, N, p.D);
+
+    const int64_t w = wm_max(p);
+    f.xo = static_cast<int>(std::max<int64_t>(1, w - p.Wd - p.Wo + 1));
+    f.xd = f.xo;
+    f.xm = p.Wd + p.Wo + 1;
+    f.kpp = (p.kb * p.gb - p.Wd - p.Wo) & 0xFFFF;
+
+    // Line buffers: R' reversed below rb, L' above it, so that the consumed
+    // prefixes of both form one growing region (docs/firmware.md, section 3).
+    f.kblk = 0;
+    f.kr = f.kmax;
+    int kl = 0;
+    for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
+    if (f.bidir)
+        kl = std::max({kl, f.s + p.D - 1, N - 1 - f.s});
+    else
+        kl = std::max(kl, N);
+    f.kl = kl;
+    f.rb = f.kblk + kKBlockSize + f.kr;
+    f.costl = f.rb + 2 + f.kl;
+    f.costh = f.costl + p.D + 1;
+    f.preg = f.costh + p.D + 1;
+    const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
+    if (f.preg > mem) {
         std::ostringstream os;
-        os << "does not fit: needs " << f.mem_needed << " bytes of local memory per PE (have "
-           << cfg.mem_bytes << ", mem_bytes) and " << f.ext_needed
-           << " bytes of external memory per PE for the pointers (have " << cfg.ext_bytes
-           << ", ext_bytes)";
+        os << "does not fit: needs at least " << f.preg + 1
+           << " bytes of local memory per PE for the line buffers and costs (have " << mem
+           << ", mem_bytes)";
+        throw FirmwareError(os.str());
+    }
+    if (tiny) {
+        if (!place_tiny(f, mem)) {
+            std::ostringstream os;
+            os << "does not fit: the line buffers, costs, output line and three pointer "
+                  "columns need more than the "
+               << mem << " bytes of local memory per PE (mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+    } else if (!place_pointers(f, mem, 0)) {
+        // The fewest spilled columns (the first ones) that let the rest fit.
+        int lo = 1, hi = f.kmax;
+        if (!place_pointers(f, mem, hi)) {
+            std::ostringstream os;
+            os << "does not fit: the line buffers, costs, output line and one pointer column "
+                  "need more than the "
+               << mem << " bytes of local memory per PE (mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+        while (lo < hi) {
+            const int mid = lo + (hi - lo) / 2;
+            if (place_pointers(f, mem, mid))
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        place_pointers(f, mem, lo);
+    }
+    if (f.ext_needed > int64_t{cfg.ext_bytes}) {
+        std::ostringstream os;
+        os << "does not fit: needs " << f.ext_needed
+           << " bytes of external memory per PE for the spilled pointer columns (have "
+           << cfg.ext_bytes << ", ext_bytes)";
         throw FirmwareError(os.str());
     }
     return f;
 }
+}  // namespace
+
+// ---- frame --------------------------------------------------------------------------------
+
+namespace {
+
+// Source lanes [a, a + n) of segment g whose pixels go to kind `kind` (input).
+void in_lanes(const ForwardPlan& f, int P, int g, int W, int kind, int* a, int* n) {
+    int lo = g * P, hi = g * P + W - 1;
+    if (f.bidir) {
+        if (kind == 0)
+            hi = std::min(hi, f.s);
+        else
+            lo = std::max(lo, f.s + 1);
+    }
+    *a = std::max(0, lo - g * P);
+    *n = std::max(0, hi - lo + 1);
+    if (*n == 0) *a = 0;
+}
+
+int seg_width(const FramePlan& fp, int g) {
+    return std::min(fp.P, fp.roi.w - g * fp.P);
+}
+
+}  // namespace
+
+void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop_in,
+                    int64_t* hop_out) {
+    const ForwardPlan& f = fp.f;
+    const int P = fp.P;
+    const int span = f.bidir ? 2 : 1;
+    auto ring = [&](int a, int b) {
+        int d = ((a - b) % P + P) % P;
+        return std::min(d, P - d);
+    };
+    auto pe_of = [&](int y, int kind) { return ((fp.rl.base + span * y + kind) % P + P) % P; };
+    // Pixels X of image img (0 = left, 1 = right) that kind `kind` needs: [lo, hi].
+    auto need = [&](int img, int kind, int* lo, int* hi) {
+        *lo = 0;
+        *hi = f.N - 1;
+        if (!f.bidir) return;
+        if (kind == 0)
+            *hi = img == 0 ? std::min(f.N - 1, f.s + f.D - 2) : f.s - 1;
+        else
+            *lo = f.s + 1;
+    };
+    // Size of [lo, hi] (lanes, within 0..P-1) inside the arc [a, a + len) mod P.
+    auto overlap = [&](int lo, int hi, int a, int len) {
+        if (lo > hi) return 0;
+        auto lin = [&](int b0, int b1) { return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1); };
+        int c = lin(a, std::min(a + len, P));
+        if (a + len > P) c += lin(0, a + len - P);
+        return c;
+    };
+    // Arc endpoints on a grid of at most 64 points per ring (any arc gives a
+    // valid bound; the grid keeps the planner fast).
+    const int step = std::max(1, P / 64);
+    int64_t tin = 0, tout = 0, hin = 0, hout = 0;
+    for (const Batch& b : fp.batches) {
+        const int H = b.lines;
+        for (int g = 0; g < fp.nseg; ++g) {
+            const int W = seg_width(fp, g);
+            const int X0 = g * P;
+            int64_t hops = 0, ohops = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    const int X = X0 + x;
+                    for (int img = 0; img < 2; ++img) {
+                        int best = INT_MAX, cnt = 0;
+                        for (int kind = 0; kind < span; ++kind) {
+                            int lo, hi;
+                            need(img, kind, &lo, &hi);
+                            if (X < lo || X > hi) continue;
+                            best = std::min(best, ring(pe_of(y, kind), x));
+                            ++cnt;
+                        }
+                        if (cnt) hops += best + (cnt - 1);
+                    }
+                    int ob = ring(pe_of(y, 0), x);
+                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x));
+                    ohops += ob;
+                }
+            int64_t cut = 0, ocut = 0;
+            for (int a = 0; a < P; a += step)
+                for (int len = step; len < P; len += step) {
+                    auto inside = [&](int q) { return ((q - a) % P + P) % P < len; };
+                    const int lanes_in = overlap(0, W - 1, a, len);
+                    int64_t c_in = 0, c_out = 0;
+                    for (int y = 0; y < H; ++y) {
+                        bool kin[2] = {inside(pe_of(y, 0)), span == 2 && inside(pe_of(y, 1))};
+                        if (!kin[0] && !kin[1]) {
+                            c_out += lanes_in;
+                            continue;
+                        }
+                        for (int img = 0; img < 2; ++img) {
+                            // union of the needed intervals of the kinds inside (as lanes)
+                            int lo = INT_MAX, hi = INT_MIN;
+                            for (int kind = 0; kind < span; ++kind) {
+                                if (!kin[kind]) continue;
+                                int l, h;
+                                need(img, kind, &l, &h);
+                                lo = std::min(lo, l);
+                                hi = std::max(hi, h);
+                            }
+                            // the kinds' intervals of one line meet or overlap (L) or
+                            // leave out X = s (R): count the hole separately
+                            lo = std::max(lo, X0) - X0;
+                            hi = std::min(hi, X0 + W - 1) - X0;
+                            if (lo > hi) continue;
+                            int hole = 0;
+                            if (f.bidir && img == 1 && kin[0] && kin[1]) {
+                                const int xs = f.s - X0;
+                                if (xs >= lo && xs <= hi) hole = inside(xs) ? 0 : 1;
+                            }
+                            c_in += (hi - lo + 1) - overlap(lo, hi, a, len) - hole;
+                        }
+                    }
+                    cut = std::max(cut, c_in);
+                    ocut = std::max(ocut, c_out);
+                }
+            const int64_t hb_in = (hops + P - 1) / P, hb_out = (ohops + P - 1) / P;
+            tin += std::max(hb_in, cut);
+            tout += std::max(hb_out, ocut);
+            hin += hb_in;
+            hout += hb_out;
+        }
+    }
+    if (in) *in = tin;
+    if (out) *out = tout;
+    if (hop_in) *hop_in = hin;
+    if (hop_out) *hop_out = hout;
+}
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
+    if (golden::uses_options(p))  // SPEC A.9: golden only until the firmware implements them
+        throw FirmwareError("the DP firmware implements SPEC A.1-A.7 only, not the A.9 options " +
+                            golden::options_string(p) + " (use --preset paper)");
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
@@ -84,16 +547,23 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
-    fp.f = plan_forward(p, roi.w, cfg);  // range and DP memory checks
     const bool bidir = p.mode == golden::Mode::Bidir;
-    fp.lpb = bidir ? fp.P / 2 : fp.P;
+    const int span = bidir ? 2 : 1;
+    fp.lpb = std::min(fp.P / span, 255);
+    // Too few lines per batch for the vote across batches: one line at a
+    // time, every pointer table kept in the external memory.
+    const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
+    fp.f = plan_forward_impl(p, roi.w, cfg, tiny);  // range and DP memory checks
+    if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {
         std::ostringstream os;
         os << "too few PEs: bidir mode needs 2 PEs per line, have " << fp.P;
         throw FirmwareError(os.str());
     }
     const int H = roi.h;
-    if (H <= fp.lpb) {
+    if (tiny) {
+        for (int y = 0; y < H; ++y) fp.batches.push_back({y, 1, 0, 1});
+    } else if (H <= fp.lpb) {
         fp.batches.push_back({0, H, 0, H});
     } else {
         const bool overlap = p.vote;
@@ -112,7 +582,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
             fp.batches.push_back({first, last - first, o - first, oe - o});
         }
     }
-    if (static_cast<int>(fp.batches.size()) > kMaxBatches) {
+    if (!tiny && static_cast<int>(fp.batches.size()) > kMaxBatches) {
         std::ostringstream os;
         os << "ROI of " << H << " lines needs " << fp.batches.size() << " batches on " << fp.P
            << " PEs; the firmware's batch table holds " << kMaxBatches
@@ -122,62 +592,103 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
 
-    // Video rows share memory with buffers that are idle while they live:
-    // IN rows (input re-layout) and OUT rows (output re-layout, while the map
-    // in the line-buffer area is read) both go to the cost planes and pointer
-    // buffers when they fit there.
-    int end = fp.f.mem_needed;
-    const ForwardPlan& f = fp.f;
-    const int spare = f.kbase - f.c0;
-    const int64_t mem = cfg.mem_bytes;
-    if (2 * fp.hbmax <= spare) {
-        fp.inl = f.c0;
-    } else if (end + 2 * fp.hbmax <= mem) {
-        fp.inl = end;
-        end += 2 * fp.hbmax;
-    } else {
-        fp.split_in = true;  // one image per re-layout pass: one set of rows
-        if (fp.hbmax <= spare) {
-            fp.inl = f.c0;
+    // Re-layout geometry: the lines fill the ring (and a segment holds at
+    // most half of it): the routes take the shorter way round; else the
+    // lines sit centred on the segment and every route is direct.
+    Relayout& rl = fp.rl;
+    const int P = fp.P;
+    const int W0 = seg_width(fp, 0);
+    rl.modular = P % 2 == 0 && span * fp.lpb == P && span * fp.hbmax == P && fp.nseg == 1 &&
+                 W0 <= P / 2;
+    if (rl.modular) {
+        rl.base = 0;
+        if (bidir) {
+            rl.ur = (P / 2 + 1) / 2;
+            rl.ul = P / 2 - rl.ur;
         } else {
-            fp.inl = end;
-            end += fp.hbmax;
+            rl.ur = (P + 1) / 2;
+            rl.ul = P - rl.ur;
+        }
+        // output displacements sigma = sender - receiver, one per class mod P
+        rl.our = P / 2;  // sigma = our_min .. our_min + step*(n-1): stored as min and count
+        rl.oul = 0;
+    } else {
+        const int reg = span * fp.hbmax;
+        rl.base = (W0 - reg) >= 0 ? (W0 - reg) / 2 : -((reg - W0 + 1) / 2);
+        int hr = -1, hl = 0;
+        for (int g = 0; g < fp.nseg; ++g) {
+            const int W = seg_width(fp, g);
+            for (int kind = 0; kind < span; ++kind) {
+                int a = 0, n = 0;
+                in_lanes(fp.f, P, g, W, kind, &a, &n);
+                if (n == 0) continue;
+                const int umin = rl.base + kind, umax = rl.base + span * (fp.hbmax - 1) + kind;
+                hr = std::max(hr, umax - a);
+                hl = std::max(hl, a + n - 1 - umin);
+            }
+        }
+        if (bidir) {
+            rl.ur = hr >= 0 ? hr / 2 + 1 : 0;
+            rl.ul = hl > 0 ? (hl + 1) / 2 : 0;
+        } else {
+            rl.ur = hr + 1;
+            rl.ul = hl;
         }
     }
-    fp.inr = fp.inl + fp.hbmax;
-    if (fp.hbmax <= spare) {
-        fp.out = f.c0;
+
+    // Video rows and the output rows: free memory outside the constant
+    // block, the line buffers and (for the output) the map.
+    const ForwardPlan& f = fp.f;
+    const int mem = static_cast<int>(cfg.mem_bytes);
+    int end = f.mem_needed;
+    fp.inl = f.costl;  // the cost planes and the pointer region are free during the input
+    if (fp.inl + 2 * fp.hbmax <= mem) {
+        fp.inr = fp.inl + fp.hbmax;
+        end = std::max(end, fp.inl + 2 * fp.hbmax);
+    } else if (fp.inl + fp.hbmax <= mem) {
+        fp.split_in = true;
+        fp.inr = fp.inl;
+        end = std::max(end, fp.inl + fp.hbmax);
     } else {
-        fp.out = end;
-        end += fp.hbmax;
-    }
-    fp.mem_needed = end;
-    fp.ext_needed = f.ext_needed;
-    if (fp.mem_needed > int64_t{cfg.mem_bytes}) {
         std::ostringstream os;
-        os << "does not fit: needs " << fp.mem_needed << " bytes of local memory per PE, have "
-           << cfg.mem_bytes << " (mem_bytes)";
+        os << "does not fit: needs " << fp.inl + fp.hbmax
+           << " bytes of local memory per PE for the video rows (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
+    // output rows: after the constant block, avoiding the map
+    fp.out = kKBlockSize;
+    if (fp.out < f.map + f.N && fp.out + fp.hbmax > f.map) fp.out = f.map + f.N;
+    if (fp.out + fp.hbmax > mem) {
+        std::ostringstream os;
+        os << "does not fit: needs " << fp.out + fp.hbmax
+           << " bytes of local memory per PE for the output rows (have " << mem
+           << ", mem_bytes)";
+        throw FirmwareError(os.str());
+    }
+    end = std::max(end, fp.out + fp.hbmax);
+    fp.mem_needed = end;
+    fp.ext_needed = f.ext_needed;
+    relayout_bound(fp, &rl.bound_in, &rl.bound_out, &rl.hop_bound_in, &rl.hop_bound_out);
     return fp;
 }
 
-isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
-    return assemble(p, fp.f, "dp.s",
-                    {{"P", fp.P},
-                     {"HROI", fp.roi.h},
-                     {"X0", fp.roi.x0},
-                     {"Y0", fp.roi.y0},
-                     {"NSEG", fp.nseg},
-                     {"INL", fp.inl},
-                     {"INR", fp.inr},
-                     {"OUT", fp.out},
-                     {"SPLIT_IN", fp.split_in ? 1 : 0}});
+const std::vector<WaveGroup>& wave_groups() {
+    // dp_forward.inc (NODE): the 16-bit shifted costs V of the node being
+    // computed, two byte registers each: r1:r2 and r3:r4 take turns as M
+    // (V(k-1, j), then the best of M and D) and Q (V(k-1, j+1)); r5:r6 the
+    // running V(k, j) of the O chain (docs/firmware.md, section 2).
+    static const std::vector<WaveGroup> g = {
+        {"fwd_pair1", "forward", {1, 2}},
+        {"fwd_pair2", "forward", {3, 4}},
+        {"fwd_run", "forward", {5, 6}},
+    };
+    return g;
 }
 
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
     std::vector<std::pair<int, uint32_t>> v;
     v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));
+    if (fp.f.tiny) return v;  // one line per batch: the CP counts lines
     for (size_t b = 0; b < fp.batches.size(); ++b) {
         const Batch& t = fp.batches[b];
         const int base = 1 + 4 * static_cast<int>(b);
@@ -189,40 +700,182 @@ std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
     return v;
 }
 
-isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& f) {
-    return assemble(p, f, "dp_forward_test.s", {});
+// ---- generated prelude ---------------------------------------------------------------------
+
+namespace {
+
+void equ(std::ostringstream& os, const char* name, int64_t v) {
+    os << ".equ " << name << " " << v << "\n";
 }
 
-isa::Program assemble(const golden::Params& p, const ForwardPlan& f, const std::string& file,
-                      const std::map<std::string, int64_t>& extra) {
+void dp_constants(std::ostringstream& os, const golden::Params& p, const ForwardPlan& f) {
+    equ(os, "MODE", f.bidir ? 1 : 0);
+    equ(os, "N", f.N);
+    equ(os, "D", f.D);
+    equ(os, "S", f.s);
+    equ(os, "DS", f.ds);
+    equ(os, "KM", p.km);
+    equ(os, "KB", p.kb);
+    equ(os, "GB", p.gb);
+    equ(os, "WO", p.Wo);
+    equ(os, "WD", p.Wd);
+    equ(os, "FRAME", p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2);
+    equ(os, "VOTE", p.vote ? 1 : 0);
+    equ(os, "KMAX", f.kmax);
+    equ(os, "KLEFT", f.bidir ? f.K[0] : 0);
+    equ(os, "KRIGHT", f.bidir ? f.K[1] : f.K[0]);
+    equ(os, "KBLK", f.kblk);
+    equ(os, "KBS", kKBlockSize);
+    equ(os, "RB", f.rb);
+    equ(os, "KR", f.kr);
+    equ(os, "KL", f.kl);
+    equ(os, "COSTL", f.costl);
+    equ(os, "COSTH", f.costh);
+    equ(os, "XO", f.xo);
+    equ(os, "XM", f.xm);
+    equ(os, "XD", f.xd);
+    equ(os, "KPP", f.kpp);
+    equ(os, "MAP", f.map);
+    equ(os, "TINY", f.tiny ? 1 : 0);
+    equ(os, "TTABLE", f.ext_table);
+    equ(os, "TBUF0", f.tiny_buf[0]);
+    equ(os, "TBUF1", f.tiny_buf[1]);
+    equ(os, "TBUF2", f.tiny_buf[2]);
+    // the left wavefront's last output position + 1 (the merge band ends there)
+    int band = 0;
+    if (f.bidir) {
+        const int fr = p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2;
+        const int last = fr == 0 ? f.s - 1 + (f.D - 1) / 2 : fr == 1 ? f.s - 1 + f.D - 1 : f.s - 1;
+        band = std::min(f.N, last + 1);
+    }
+    equ(os, "BANDE", band);
+    equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - 2)) : 0);
+}
+
+void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_FORWARD\n";
+    size_t si = 0;
+    for (size_t i = 0; i < f.passes.size(); ++i) {
+        const ForwardPass& ps = f.passes[i];
+        os << "        FCOL " << ps.k << ", " << ps.kind << ", " << ps.jlo << ", " << ps.n << ", "
+           << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << "\n";
+        while (si < f.spills.size() && f.spills[si].after == static_cast<int>(i)) {
+            const Transfer& t = f.spills[si++];
+            os << "        FSPILL " << t.local << ", " << t.ext << ", " << t.len << "\n";
+        }
+    }
+    os << "        FEND\n.endm\n";
+    os << ".macro PLAN_RELOAD\n.endm\n";
+    os << ".macro PLAN_BACK\n";
+    for (int k = f.kmax; k >= 1; --k) {
+        if (f.tiny) {
+            int size = 0, ext_addr = -1;
+            for (int p = 0; p < f.kinds; ++p)
+                if (f.ptr[p][k].bytes > 0) ext_addr = f.ptr[p][k].ext;
+            for (const ForwardPass& ps : f.passes)
+                if (ps.k == k) size = std::max(size, ps.bytes);
+            if (ext_addr >= 0) os << "        TRELOAD " << ext_addr << ", " << size << "\n";
+        }
+        for (const Transfer& t : f.reloads)
+            if (t.after == k)
+                os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
+        int addr = -1, maxb = 0, base[2] = {0, 0}, act[2] = {0, 0};
+        for (int p = 0; p < f.kinds; ++p) {
+            const PointerColumn& c = f.ptr[p][k];
+            if (k > f.K[p] || c.bytes == 0) continue;
+            addr = c.addr;
+            base[p] = c.base;
+            act[p] = 1;
+            maxb = std::max(maxb, c.bytes);
+        }
+        os << "        BCOL " << k << ", " << addr << ", " << base[0] << ", " << base[1] << ", "
+           << maxb - 1 << ", " << act[0] << ", " << act[1] << "\n";
+    }
+    os << ".endm\n";
+}
+
+}  // namespace
+
+std::string frame_source(const golden::Params& p, const FramePlan& fp) {
+    std::ostringstream os;
+    os << "; Generated by the firmware planner (firmware/src/plan.cpp) for one parameter set:\n"
+          "; the constants and the per-column plan of dp.s (docs/firmware.md).\n";
+    dp_constants(os, p, fp.f);
+    equ(os, "P", fp.P);
+    equ(os, "HROI", fp.roi.h);
+    equ(os, "X0", fp.roi.x0);
+    equ(os, "Y0", fp.roi.y0);
+    equ(os, "NSEG", fp.nseg);
+    equ(os, "LPB", fp.lpb);
+    equ(os, "HBMAX", fp.hbmax);
+    equ(os, "INL", fp.inl);
+    equ(os, "INR", fp.inr);
+    equ(os, "OUT", fp.out);
+    equ(os, "SPLIT_IN", fp.split_in ? 1 : 0);
+    equ(os, "RMOD", fp.rl.modular ? 1 : 0);
+    equ(os, "BP", fp.rl.base);
+    equ(os, "UR", fp.rl.ur);
+    equ(os, "UL", fp.rl.ul);
+    dp_macros(os, fp.f);
+    // Per-segment re-layout calls: segment, width, receiver lanes of both kinds.
+    os << ".macro PLAN_IN\n";
+    for (int g = 0; g < fp.nseg; ++g) {
+        const int W = seg_width(fp, g);
+        int a0, n0, a1 = 0, n1 = 0;
+        in_lanes(fp.f, fp.P, g, W, 0, &a0, &n0);
+        if (fp.f.bidir) in_lanes(fp.f, fp.P, g, W, 1, &a1, &n1);
+        os << "        RELAYOUT_IN " << g << ", " << W << ", " << a0 << ", " << n0 << ", " << a1
+           << ", " << n1 << "\n";
+    }
+    os << ".endm\n";
+    os << ".macro PLAN_OUT\n";
+    for (int g = 0; g < fp.nseg; ++g) {
+        const int W = seg_width(fp, g);
+        // displacement sigma = sender - receiver of the output items
+        int smin = INT_MAX, smax = INT_MIN;
+        const int span = fp.f.bidir ? 2 : 1;
+        if (fp.rl.modular) {
+            // one displacement per class mod P (and of one parity in bidir mode)
+            if (span == 2) {
+                smin = -fp.P / 2 + 1;
+                if (smin % 2 != 0) ++smin;  // the items' displacements are even (BP = 0)
+                smax = smin + fp.P - 2;
+            } else {
+                smin = -fp.P / 2 + 1;
+                smax = fp.P / 2;
+            }
+        } else {
+            for (int y = 0; y < fp.hbmax; ++y)
+                for (int x = 0; x < W; ++x) {
+                    const int X = g * fp.P + x;
+                    const int pos = fp.rl.base + span * y + (span == 2 ? (X & 1) : 0);
+                    smin = std::min(smin, pos - x);
+                    smax = std::max(smax, pos - x);
+                }
+        }
+        os << "        RELAYOUT_OUT " << g << ", " << W << ", " << smin << ", " << smax << "\n";
+    }
+    os << ".endm\n";
+    os << ".include \"" << firmware_dir() << "/dp.s\"\n";
+    return os.str();
+}
+
+isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
     isa::AsmOptions o;
-    o.defines = {{"MODE", f.bidir ? 1 : 0},
-                 {"N", f.N},
-                 {"D", f.D},
-                 {"S", f.s},
-                 {"DS", f.ds},
-                 {"KMAX", f.kmax},
-                 {"DQ", f.dq},
-                 {"KM", p.km},
-                 {"KB", p.kb},
-                 {"GB", p.gb},
-                 {"WO", p.Wo},
-                 {"WD", p.Wd},
-                 {"IMGR", f.imgr},
-                 {"IMGL", f.imgl},
-                 {"COST0", f.c0},
-                 {"COST1", f.c1},
-                 {"COST2", f.c2},
-                 {"PBUF", f.pbuf},
-                 {"VBUF", f.vbuf},
-                 {"MAP", f.map},
-                 {"K_BASE", f.kbase},
-                 {"FRAME", p.frame == golden::Frame::Cyclopean ? 0
-                           : p.frame == golden::Frame::Left    ? 1
-                                                               : 2},
-                 {"VOTE", p.vote ? 1 : 0}};
-    for (const auto& [k, v] : extra) o.defines[k] = v;
-    return isa::assemble_file(firmware_dir() + "/" + file, o);
+    return isa::assemble_string(frame_source(p, fp), firmware_dir() + "/dp_plan.s", o);
+}
+
+isa::Program assemble_test(const golden::Params& p, const ForwardPlan& f, const std::string& file,
+                           int lines, int P) {
+    std::ostringstream os;
+    dp_constants(os, p, f);
+    equ(os, "P", P);
+    equ(os, "HB", lines);
+    equ(os, "HROI", lines);
+    dp_macros(os, f);
+    os << ".include \"" << firmware_dir() << "/" << file << "\"\n";
+    isa::AsmOptions o;
+    return isa::assemble_string(os.str(), firmware_dir() + "/test_plan.s", o);
 }
 
 }  // namespace imap::firmware

@@ -27,6 +27,16 @@ isa::ImageVideoPort::Image to_video_image(const golden::ImageView& v) {
     return im;
 }
 
+void set_relayout_figures(const FramePlan& plan, FrameResult& r) {
+    r.relayout_in = r.relayout_out = 0;
+    for (const auto& [name, cyc] : r.phases) {
+        if (name == "relayout_in") r.relayout_in = cyc;
+        if (name == "relayout_out") r.relayout_out = cyc;
+    }
+    r.relayout_bound_in = plan.rl.bound_in;
+    r.relayout_bound_out = plan.rl.bound_out;
+}
+
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
                            const golden::ImageView& left, const golden::ImageView& right,
                            const isa::MachineConfig& cfg, isa::Observer* observer) {
@@ -44,12 +54,13 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     FrameResult r;
     r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.cycles = m.cycles();
-    r.modeled_ms = cfg.seconds(r.cycles) * 1e3;
+    r.modeled_ms = cfg.milliseconds(r.cycles);
     r.phases = phase_table(m);
     r.stats = m.stats();
     r.map.width = plan.roi.w;
     r.map.height = plan.roi.h;
     r.map.data = video.output[0].pixels;
+    set_relayout_figures(plan, r);
     return r;
 }
 

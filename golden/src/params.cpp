@@ -29,8 +29,10 @@ void validate_params(const Params& p) {
     check_range("D", p.D, 1, kMaxLevels, "at most the ROI width");
     check_range("km", p.km, 0, kMaxWeight);
     check_range("kb", p.kb, 0, kMaxWeight);
-    if (p.km == 0 && p.kb == 0)
-        throw ParamError("parameters km = 0 and kb = 0: at least one match weight must be > 0");
+    check_range("kc", p.kc, 0, kMaxWeight);
+    if (p.km == 0 && p.kb == 0 && p.kc == 0)
+        throw ParamError(
+            "parameters km = 0, kb = 0 and kc = 0: at least one match weight must be > 0");
     check_range("gb", p.gb, 0, 255);
     check_range("Wd", p.Wd, 0, kMaxWeight);
     if (p.Wo < p.Wd) {
@@ -39,7 +41,15 @@ void validate_params(const Params& p) {
         fail("Wo", p.Wo, os.str());
     }
     check_range("Wo", p.Wo, p.Wd, kMaxWeight);
-    if (p.mode == Mode::Bidir) {
+    if (p.dissim != Dissim::Ad && p.dissim != Dissim::Bt)
+        fail("dissim", static_cast<long long>(p.dissim), "0 (ad) or 1 (bt)");
+    check_range("ad-max", p.ad_max, 0, 255);
+    check_range("census", p.census, 1, kMaxCensusRadius, "the census neighbour distance");
+    check_range("agg-rx", p.agg_rx, 0, kMaxAggRadius);
+    check_range("agg-ry", p.agg_ry, 0, kMaxAggRadius);
+    if (p.mode != Mode::Single && p.mode != Mode::Bidir && p.mode != Mode::Joint)
+        fail("mode", static_cast<long long>(p.mode), "single, bidir or joint");
+    if (p.mode != Mode::Single) {
         if (p.seed_col.kind == SeedColKind::Fixed)
             check_range("seed-col", p.seed_col.value, 1, kMaxWidth - 1, "1..N-1");
         if (!p.seed_disp.free) check_range("seed-disp", p.seed_disp.value, 0, kMaxLevels - 1);
@@ -55,8 +65,11 @@ void validate_for_width(const Params& p, int N) {
         hint << "min(N, 255) with N = " << N;
         check_range("D", p.D, 1, dmax, hint.str());
     }
-    if (p.mode != Mode::Bidir) return;
-    if (N < 2) fail("ROI width N", N, "2.. in bidir mode (the seed column needs 1 <= s <= N-1)");
+    if (p.mode == Mode::Single) return;
+    if (N < 2)
+        fail("ROI width N", N,
+             std::string("2.. in ") + to_string(p.mode) +
+                 " mode (the seed column needs 1 <= s <= N-1)");
     if (p.seed_col.kind == SeedColKind::Fixed) {
         std::ostringstream hint;
         hint << "1 <= s <= N-1 with N = " << N;
@@ -109,7 +122,63 @@ int resolve_seed_col(const Params& p, int N) {
 }
 
 const char* to_string(Mode m) {
-    return m == Mode::Single ? "single" : "bidir";
+    switch (m) {
+        case Mode::Single:
+            return "single";
+        case Mode::Joint:
+            return "joint";
+        case Mode::Bidir:
+            break;
+    }
+    return "bidir";
+}
+
+const char* to_string(Dissim d) {
+    return d == Dissim::Bt ? "bt" : "ad";
+}
+
+bool uses_options(const Params& p) {
+    return !options_string(p).empty();
+}
+
+std::string options_string(const Params& p) {
+    const Params off;
+    std::ostringstream os;
+    auto add = [&](const std::string& flag, const std::string& value) {
+        os << (os.tellp() > 0 ? " " : "") << flag << " " << value;
+    };
+    if (p.mode == Mode::Joint) add("--mode", "joint");
+    if (p.dissim != off.dissim) add("--dissim", to_string(p.dissim));
+    if (p.ad_max != off.ad_max) add("--ad-max", std::to_string(p.ad_max));
+    if (p.kc != off.kc) add("--kc", std::to_string(p.kc));
+    if (p.kc != off.kc && p.census != off.census) add("--census", std::to_string(p.census));
+    if (p.agg_rx != off.agg_rx) add("--agg-rx", std::to_string(p.agg_rx));
+    if (p.agg_ry != off.agg_ry) add("--agg-ry", std::to_string(p.agg_ry));
+    return os.str();
+}
+
+Params preset(const std::string& name) {
+    Params p;
+    if (name == "paper") return p;
+    if (name != "quality")
+        throw ParamError("unknown preset '" + name + "' (allowed: " + preset_names() + ")");
+    // docs/golden.md, "Presets": chosen by the tuning sweep on the development scenes.
+    p.mode = Mode::Joint;
+    p.km = 1;
+    p.kb = 0;
+    p.gb = 0;
+    p.ad_max = 16;
+    p.kc = 4;
+    p.census = 2;
+    p.agg_rx = 2;
+    p.agg_ry = 2;
+    p.Wo = 400;
+    p.Wd = 400;
+    return p;
+}
+
+const char* preset_names() {
+    return "paper, quality";
 }
 
 const char* to_string(Frame f) {

@@ -1,8 +1,10 @@
 #include "imap/golden/stereo.hpp"
 
 #include <algorithm>
+
 #include <array>
 #include <limits>
+#include "imap/golden/cost.hpp"
 
 namespace imap::golden {
 namespace {
@@ -24,23 +26,37 @@ struct CostTraits<int64_t> {
 
 // Upper bound of any path cost to any state plus one step: a path to (i, j)
 // has at most (i + 1) right-pixel steps and (i + 1 + j) left-pixel steps.
+// With the A.9 cost options Wm is a sum of window_terms pixel terms.
 int64_t cost_bound(const Params& p, int N) {
-    const int64_t wm_max = int64_t{p.km} * 255 + int64_t{p.kb} * p.gb;
+    const int64_t wm_max = window_terms(p) * pixel_cost_max(p);
     const int64_t w = std::max({wm_max, int64_t{p.Wo}, int64_t{p.Wd}});
     return (2 * int64_t{N} + p.D + 4) * w;
 }
 
-template <class C>
+// kTable: the match cost of state (i, j) is cost[i * D + j] (SPEC A.9 cost
+// options, a CostVolume line) instead of Wm(R[i], L[i + j]).
+template <class C, bool kTable>
 struct Line {
     const Params& p;
     const uint8_t* L;
     const uint8_t* R;
+    const C* cost;
     int N, D;
     C km, kb, Wo, Wd;
     int gb;
 
-    Line(const Params& pp, const uint8_t* l, const uint8_t* r, int n)
-        : p(pp), L(l), R(r), N(n), D(pp.D), km(pp.km), kb(pp.kb), Wo(pp.Wo), Wd(pp.Wd), gb(pp.gb) {}
+    Line(const Params& pp, const uint8_t* l, const uint8_t* r, const C* c, int n)
+        : p(pp),
+          L(l),
+          R(r),
+          cost(c),
+          N(n),
+          D(pp.D),
+          km(pp.km),
+          kb(pp.kb),
+          Wo(pp.Wo),
+          Wd(pp.Wd),
+          gb(pp.gb) {}
 
     // Wm(i, j) with a = R[i], b = L[i + j].
     C wm(int a, int b) const {
@@ -50,28 +66,40 @@ struct Line {
     }
     int top(int i) const { return std::min(D - 1, N - 1 - i); }  // last valid level at site i
 
-    // Right wavefront (A.3 recurrence) over sites first..N-1, starting from
+    // Right wavefront (A.3 recurrence) over sites first..last, starting from
     // column `first - 1` whose costs are in prev[0..D-1] (prev[D] = kInf).
-    // Pointers go to tab rows starting at site `first`. Returns E(N-1, 0).
+    // Pointers go to tab rows starting at site `first`. Returns E(last, 0);
+    // prev holds E(last, j) afterwards.
     // Each column is two passes: M and D do not depend on the column itself
     // (a vectorisable loop), O is a serial scan in increasing j. The result
     // is the A.3 tie order: M, then D if strictly smaller, then O if
     // strictly smaller.
-    C right(std::vector<C>& prev, std::vector<C>& cur, int first, uint8_t* tab) const {
+    C right(std::vector<C>& prev, std::vector<C>& cur, int first, int last, uint8_t* tab) const {
         constexpr C kInf = CostTraits<C>::kInf;
-        for (int i = first; i < N; ++i) {
+        for (int i = first; i <= last; ++i) {
             const int jm = top(i);
             uint8_t* bp = tab + static_cast<size_t>(i - first) * D;
-            const uint8_t* lp = L + i;
-            const int a = R[i];
             const C* pv = prev.data();
             C* cv = cur.data();
-            for (int j = 0; j <= jm; ++j) {
-                const C m = pv[j] + wm(a, lp[j]);
-                const C d = pv[j + 1] + Wd;
-                const bool take_d = d < m;
-                cv[j] = take_d ? d : m;
-                bp[j] = take_d ? kD : kM;
+            if constexpr (kTable) {
+                const C* cr = cost + static_cast<size_t>(i) * D;
+                for (int j = 0; j <= jm; ++j) {
+                    const C m = pv[j] + cr[j];
+                    const C d = pv[j + 1] + Wd;
+                    const bool take_d = d < m;
+                    cv[j] = take_d ? d : m;
+                    bp[j] = take_d ? kD : kM;
+                }
+            } else {
+                const uint8_t* lp = L + i;
+                const int a = R[i];
+                for (int j = 0; j <= jm; ++j) {
+                    const C m = pv[j] + wm(a, lp[j]);
+                    const C d = pv[j + 1] + Wd;
+                    const bool take_d = d < m;
+                    cv[j] = take_d ? d : m;
+                    bp[j] = take_d ? kD : kM;
+                }
             }
             C run = cv[0];
             for (int j = 1; j <= jm; ++j) {
@@ -90,26 +118,39 @@ struct Line {
         return prev[0];
     }
 
-    // Left wavefront (A.4): cost-to-go G for sites s-2 down to -1, starting
-    // from site s-1 whose costs are in next[1..D] (index = level + 1, with
+    // Left wavefront (A.4): cost-to-go G for sites hi-1 down to lo, starting
+    // from site hi whose costs are in next[1..D] (index = level + 1, with
     // next[0] = kInf so that D from level -1 is absent). Pointer row r of
-    // tab is site r - 1. Same two-pass structure, O scanned in decreasing j.
-    C left(std::vector<C>& next, std::vector<C>& cur, int s, uint8_t* tab) const {
+    // tab is site r + tab_first. Same two-pass structure, O scanned in
+    // decreasing j. Returns G(lo, 0); next holds G(lo, j) afterwards.
+    C left(std::vector<C>& next, std::vector<C>& cur, int hi, int lo, uint8_t* tab,
+           int tab_first) const {
         constexpr C kInf = CostTraits<C>::kInf;
-        for (int i = s - 2; i >= -1; --i) {
+        for (int i = hi - 1; i >= lo; --i) {
             const int jm = i < 0 ? D - 1 : top(i);
-            uint8_t* fp = tab + static_cast<size_t>(i + 1) * D;
-            const int a = R[i + 1];
-            const uint8_t* lp = L + i + 1;
+            uint8_t* fp = tab + static_cast<size_t>(i - tab_first) * D;
             const C* nv = next.data();
             C* cv = cur.data() + 1;                     // cv[j] = G(i, j)
             const int jm_m = std::min(jm, top(i + 1));  // M needs (i+1, j) valid
-            for (int j = 0; j <= jm_m; ++j) {
-                const C m = nv[j + 1] + wm(a, lp[j]);  // G(i+1, j) + Wm(i+1, j)
-                const C d = nv[j] + Wd;                // G(i+1, j-1) + Wd
-                const bool take_d = d < m;
-                cv[j] = take_d ? d : m;
-                fp[j] = take_d ? kD : kM;
+            if constexpr (kTable) {
+                const C* cr = cost + static_cast<size_t>(i + 1) * D;
+                for (int j = 0; j <= jm_m; ++j) {
+                    const C m = nv[j + 1] + cr[j];  // G(i+1, j) + Wm(i+1, j)
+                    const C d = nv[j] + Wd;         // G(i+1, j-1) + Wd
+                    const bool take_d = d < m;
+                    cv[j] = take_d ? d : m;
+                    fp[j] = take_d ? kD : kM;
+                }
+            } else {
+                const int a = R[i + 1];
+                const uint8_t* lp = L + i + 1;
+                for (int j = 0; j <= jm_m; ++j) {
+                    const C m = nv[j + 1] + wm(a, lp[j]);  // G(i+1, j) + Wm(i+1, j)
+                    const C d = nv[j] + Wd;                // G(i+1, j-1) + Wd
+                    const bool take_d = d < m;
+                    cv[j] = take_d ? d : m;
+                    fp[j] = take_d ? kD : kM;
+                }
             }
             if (jm > jm_m) {  // top level: M would leave the valid states, D only
                 cv[jm] = nv[jm] + Wd;
@@ -143,18 +184,76 @@ struct Line {
     }
 };
 
-template <class C>
-void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, int N, LineTables& t) {
+// SPEC A.9 joint mode: the A.3 forward pass over sites 0..s (pointers bp in
+// t.right), the A.4 cost-to-go from the end state (N-1, 0) down to site s
+// (pointers fp in t.left, first site s), and the meeting level
+// js = argmin_j E(s, j) + G(s, j) (smallest j on ties; j = ds when fixed).
+template <class C, bool kTable>
+void forward_joint(const Params& p, const Line<C, kTable>& line, std::vector<C>& a,
+                   std::vector<C>& b, int N, LineTables& t) {
+    constexpr C kInf = CostTraits<C>::kInf;
+    const int D = p.D;
+    const int s = resolve_seed_col(p, N);
+    const int ds = p.seed_disp.free ? -1 : p.seed_disp.value;
+    t.s = s;
+    t.ds = ds;
+    t.right_first = 0;
+    t.right.resize(static_cast<size_t>(s + 1) * D);
+    t.left_first = s;
+    t.left.resize(static_cast<size_t>(N - s) * D);
+
+    for (int j = 0; j < D; ++j) a[j] = C(j) * line.Wo;  // E(-1, j) = j * Wo
+    a[D] = kInf;
+    line.right(a, b, 0, s, t.right.data());
+    thread_local std::vector<C> e;
+    e.assign(a.begin(), a.begin() + D);  // E(s, j)
+
+    // Cost-to-go: G(N-1, 0) = 0, the other levels of site N-1 are invalid.
+    a.assign(D + 2, kInf);
+    b.assign(D + 2, kInf);
+    a[1] = 0;
+    uint8_t* last = t.left.data() + static_cast<size_t>(N - 1 - s) * D;
+    std::fill(last, last + D, uint8_t{kNone});
+    last[0] = kM;                                 // the end state; never followed
+    line.left(a, b, N - 1, s, t.left.data(), s);  // a[j + 1] = G(s, j)
+
+    const int jm = line.top(s);
+    C best = kInf;
+    int js = -1;
+    for (int j = 0; j <= jm; ++j) {
+        if (ds >= 0 && j != ds) continue;
+        if (e[j] >= kInf || a[j + 1] >= kInf) continue;
+        const C total = e[j] + a[j + 1];
+        if (js < 0 || total < best) {
+            best = total;
+            js = j;
+        }
+    }
+    t.js = js;  // always found: every valid state of site s lies on a complete path
+    t.right_cost = best;
+    t.left_cost = 0;
+}
+
+template <class C, bool kTable>
+void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, const C* cost, int N,
+                   LineTables& t) {
     constexpr C kInf = CostTraits<C>::kInf;
     thread_local std::vector<C> a, b;
     const int D = p.D;
     a.assign(D + 2, kInf);
     b.assign(D + 2, kInf);
-    Line<C> line(p, L, R, N);
+    Line<C, kTable> line(p, L, R, cost, N);
 
     t.N = N;
     t.D = D;
     t.bidir = p.mode == Mode::Bidir;
+    t.joint = p.mode == Mode::Joint;
+    t.left_first = -1;
+    t.js = -1;
+    if (t.joint) {
+        forward_joint(p, line, a, b, N, t);
+        return;
+    }
     if (!t.bidir) {
         t.s = 0;
         t.ds = -1;
@@ -163,7 +262,7 @@ void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, int N, L
         t.left.clear();
         for (int j = 0; j < D; ++j) a[j] = C(j) * line.Wo;  // E(-1, j) = j * Wo
         a[D] = kInf;
-        t.right_cost = line.right(a, b, 0, t.right.data());
+        t.right_cost = line.right(a, b, 0, N - 1, t.right.data());
         t.left_cost = 0;
         return;
     }
@@ -193,7 +292,7 @@ void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, int N, L
             }
         }
         a[D] = kInf;
-        t.right_cost = line.right(a, b, s + 1, bp + D);  // = E(s, 0) when s = N-1
+        t.right_cost = line.right(a, b, s + 1, N - 1, bp + D);  // = E(s, 0) when s = N-1
     }
 
     // Left wavefront: site s-1 is the start, stored at row s.
@@ -213,20 +312,22 @@ void forward_typed(const Params& p, const uint8_t* L, const uint8_t* R, int N, L
                 fp[j] = j == ds ? kM : kO;
             }
         }
-        t.left_cost = line.left(a, b, s, t.left.data());
+        t.left_cost = line.left(a, b, s - 1, -1, t.left.data(), -1);
     }
 }
 
 bool right_state_ok(const LineTables& t, int i, int j) {
     if (j < 0 || j >= t.D) return false;
     if (!t.bidir && i == -1) return true;  // virtual start column
-    if (i < t.right_first || i > t.N - 1 || i + j > t.N - 1) return false;
+    const int last = t.joint ? t.s : t.N - 1;
+    if (i < t.right_first || i > last || i + j > t.N - 1) return false;
     return t.bp(i, j) != kNone;
 }
 
 bool left_state_ok(const LineTables& t, int i, int j) {
     if (j < 0 || j >= t.D) return false;
-    if (i < -1 || i > t.s - 1 || (i >= 0 && i + j > t.N - 1)) return false;
+    const int last = t.joint ? t.N - 1 : t.s - 1;
+    if (i < t.left_first || i > last || (i >= 0 && i + j > t.N - 1)) return false;
     return t.fp(i, j) != kNone;
 }
 
@@ -238,13 +339,25 @@ bool neighbours_agree(const LineTables* above, const LineTables* below) {
 
 void forward_line(const Params& p, const uint8_t* L, const uint8_t* R, int N, LineTables& out) {
     if (cost_bound(p, N) < (int64_t{1} << 29))
-        forward_typed<int32_t>(p, L, R, N, out);
+        forward_typed<int32_t, false>(p, L, R, nullptr, N, out);
     else
-        forward_typed<int64_t>(p, L, R, N, out);
+        forward_typed<int64_t, false>(p, L, R, nullptr, N, out);
 }
 
-uint8_t voted_bp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
-                 int j) {
+void forward_line_cost(const Params& p, const int64_t* cost, int N, LineTables& out) {
+    if (cost_bound(p, N) < (int64_t{1} << 29)) {
+        thread_local std::vector<int32_t> c32;
+        c32.assign(cost, cost + static_cast<size_t>(N) * p.D);
+        forward_typed<int32_t, true>(p, nullptr, nullptr, c32.data(), N, out);
+    } else {
+        forward_typed<int64_t, true>(p, nullptr, nullptr, cost, N, out);
+    }
+}
+
+namespace {
+
+inline uint8_t voted_bp_impl(const LineTables* above, const LineTables& self,
+                             const LineTables* below, int i, int j) {
     const uint8_t own = self.bp(i, j);
     if (!neighbours_agree(above, below)) return own;
     const uint8_t v = above->bp(i, j);
@@ -266,8 +379,8 @@ uint8_t voted_bp(const LineTables* above, const LineTables& self, const LineTabl
     return ok ? v : own;
 }
 
-uint8_t voted_fp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
-                 int j) {
+inline uint8_t voted_fp_impl(const LineTables* above, const LineTables& self,
+                             const LineTables* below, int i, int j) {
     const uint8_t own = self.fp(i, j);
     if (!neighbours_agree(above, below)) return own;
     const uint8_t v = above->fp(i, j);
@@ -289,18 +402,73 @@ uint8_t voted_fp(const LineTables* above, const LineTables& self, const LineTabl
     return ok ? v : own;
 }
 
+}  // namespace
+
+uint8_t voted_bp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
+                 int j) {
+    return voted_bp_impl(above, self, below, i, j);
+}
+
+uint8_t voted_fp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
+                 int j) {
+    return voted_fp_impl(above, self, below, i, j);
+}
+
 std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
                              const LineTables* below, bool vote) {
     if (!vote) above = below = nullptr;
     std::vector<Event> ev;
     ev.reserve(static_cast<size_t>(2 * self.N + self.D));
 
+    if (self.joint) {
+        // Right part: forward from (s, js) to the end state (N-1, 0), then
+        // reversed, so that the events come in backtrack order as in single.
+        int i = self.s, j = self.js;
+        while (i < self.N - 1) {
+            const uint8_t v = voted_fp_impl(above, self, below, i, j);
+            switch (v) {
+                case kM:
+                    ++i;
+                    break;
+                case kD:
+                    ++i;
+                    --j;
+                    break;
+                default:
+                    ++j;
+                    break;
+            }
+            ev.push_back({i, j, static_cast<Step>(v)});
+        }
+        std::reverse(ev.begin(), ev.end());
+        // Left part: back from (s, js) to column -1.
+        i = self.s;
+        j = self.js;
+        while (i > -1) {
+            const uint8_t v = voted_bp_impl(above, self, below, i, j);
+            ev.push_back({i, j, static_cast<Step>(v)});
+            switch (v) {
+                case kM:
+                    --i;
+                    break;
+                case kD:
+                    --i;
+                    ++j;
+                    break;
+                default:
+                    --j;
+                    break;
+            }
+        }
+        return ev;
+    }
+
     if (self.bidir) {
         // Left wavefront: forward from (-1, 0) to (s-1, ds) or any state of site s-1.
         int i = -1, j = 0;
         const int last = self.s - 1;
         while (!(i == last && (self.ds < 0 || j == self.ds))) {
-            const uint8_t v = voted_fp(above, self, below, i, j);
+            const uint8_t v = voted_fp_impl(above, self, below, i, j);
             switch (v) {
                 case kM:
                     ++i;
@@ -321,7 +489,7 @@ std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
     const int stop = self.bidir ? self.s : -1;
     int i = self.N - 1, j = 0;
     while (i > stop) {
-        const uint8_t v = voted_bp(above, self, below, i, j);
+        const uint8_t v = voted_bp_impl(above, self, below, i, j);
         ev.push_back({i, j, static_cast<Step>(v)});
         switch (v) {
             case kM:
@@ -392,6 +560,37 @@ void fill_row(uint8_t* row, int n) {
     }
 }
 
+namespace {
+
+// The rolling three-line loop of compute(): `fwd(y, tables)` runs the
+// forward pass of ROI line y (called in increasing y).
+template <class Fwd>
+void compute_lines(const Params& p, int N, int H, bool fill, DisparityMap& map, Fwd&& fwd) {
+    std::array<LineTables, 3> tabs;  // lines y-1, y, y+1 (rolling)
+    fwd(0, tabs[0]);
+    for (int y = 0; y < H; ++y) {
+        if (y + 1 < H) fwd(y + 1, tabs[static_cast<size_t>((y + 1) % 3)]);
+        const LineTables* above = y > 0 ? &tabs[static_cast<size_t>((y - 1) % 3)] : nullptr;
+        const LineTables* below = y + 1 < H ? &tabs[static_cast<size_t>((y + 1) % 3)] : nullptr;
+        const std::vector<Event> ev =
+            backtrack(above, tabs[static_cast<size_t>(y % 3)], below, p.vote);
+        uint8_t* row = map.data.data() + static_cast<size_t>(y) * N;
+        render_line(ev, p.frame, N, row);
+        if (fill) fill_row(row, N);
+    }
+}
+
+template <class C>
+void compute_volume(const Params& p, ImageView left, ImageView right, const Roi& roi, bool fill,
+                    DisparityMap& map) {
+    CostVolume<C> vol(p, left, right, roi);
+    compute_lines(p, roi.w, roi.h, fill, map, [&](int y, LineTables& t) {
+        forward_typed<C, true>(p, nullptr, nullptr, vol.line(y), roi.w, t);
+    });
+}
+
+}  // namespace
+
 DisparityMap compute(const Params& p, ImageView left, ImageView right, const Roi& roi, bool fill) {
     if (left.width != right.width || left.height != right.height)
         throw ParamError("left and right images differ in size: " + std::to_string(left.width) +
@@ -404,22 +603,16 @@ DisparityMap compute(const Params& p, ImageView left, ImageView right, const Roi
     map.height = H;
     map.data.assign(static_cast<size_t>(N) * H, kOccluded);
 
-    std::array<LineTables, 3> tabs;  // lines y-1, y, y+1 (rolling)
-    auto fwd = [&](int y) {
-        forward_line(p, left.row(roi.y0 + y) + roi.x0, right.row(roi.y0 + y) + roi.x0, N,
-                     tabs[static_cast<size_t>(y % 3)]);
-    };
-    fwd(0);
-    for (int y = 0; y < H; ++y) {
-        if (y + 1 < H) fwd(y + 1);
-        const LineTables* above = y > 0 ? &tabs[static_cast<size_t>((y - 1) % 3)] : nullptr;
-        const LineTables* below = y + 1 < H ? &tabs[static_cast<size_t>((y + 1) % 3)] : nullptr;
-        const std::vector<Event> ev =
-            backtrack(above, tabs[static_cast<size_t>(y % 3)], below, p.vote);
-        uint8_t* row = map.data.data() + static_cast<size_t>(y) * N;
-        render_line(ev, p.frame, N, row);
-        if (fill) fill_row(row, N);
+    if (uses_cost_volume(p)) {
+        if (cost_bound(p, N) < (int64_t{1} << 29))
+            compute_volume<int32_t>(p, left, right, roi, fill, map);
+        else
+            compute_volume<int64_t>(p, left, right, roi, fill, map);
+        return map;
     }
+    compute_lines(p, N, H, fill, map, [&](int y, LineTables& t) {
+        forward_line(p, left.row(roi.y0 + y) + roi.x0, right.row(roi.y0 + y) + roi.x0, N, t);
+    });
     return map;
 }
 

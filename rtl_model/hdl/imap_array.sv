@@ -30,12 +30,14 @@ module imap_array
     output logic all_t,  // AND of T over the active PEs (1 when none is active)
     output logic memx_bad,  // an active PE's ldx / stx address is out of range
     output logic [15:0] memx_pe,  // the first such PE
+    output logic [15:0] memx_off,  // and its per-PE offset (rb:ra)
     output logic [16:0] active_n  // PEs with M = 1 (valid with red_count)
 );
 
 
   logic [7:0] ring[P];
   logic [2:0] st[P];
+  logic [15:0] xoff[P];
 
   for (genvar p = 0; p < P; p++) begin : g_pe
     // ring neighbours: nb_lo = PE p-1 (rxl moves data to higher indices),
@@ -61,6 +63,7 @@ module imap_array
         .row_in(rbus[p*XROWS*8+:XROWS*8]),
         .ring_q(ring[p]),
         .st_q(st[p]),
+        .xoff_q(xoff[p]),
         .row_q(rrow[p])
     );
   end
@@ -71,6 +74,7 @@ module imap_array
     all_t = 1'b1;
     memx_bad = 1'b0;
     memx_pe = 16'h0;
+    memx_off = 16'h0;
     active_n = 17'h0;
     if (red_status)
       for (int p = 0; p < P; p++) begin
@@ -82,6 +86,7 @@ module imap_array
         if (st[p][2] && st[p][0]) begin
           memx_bad = 1'b1;
           memx_pe = 16'(p);
+          memx_off = xoff[p];
         end
     if (red_count) for (int p = 0; p < P; p++) active_n = active_n + 17'(st[p][0]);
   end

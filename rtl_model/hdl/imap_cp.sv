@@ -77,6 +77,7 @@ module imap_cp
     input logic all_t,
     input logic memx_bad,
     input logic [15:0] memx_pe,
+    input logic [15:0] memx_off,  // its per-PE offset (rb:ra), for the fault report
     input logic [16:0] active_n,
     // external-memory transfer engine and video unit (imap_board)
     output logic xe_pf,  // prefetch ext rows [xe_prow, +XROWS) onto the row bus
@@ -407,7 +408,7 @@ module imap_cp
     x_fpe = 32'hFFFF_FFFF;
     x_fad = x_faddr;
     if (x_v && x_first) begin
-      if (mcycle > cfg_watchdog) x_flt = imap_pkg::FLT_WATCHDOG;
+      if (mcycle >= cfg_watchdog) x_flt = imap_pkg::FLT_WATCHDOG;  // the run would be longer
       else if (x_dflt != imap_pkg::FLT_NONE) x_flt = x_dflt;
       else
         case (x_op)
@@ -421,6 +422,7 @@ module imap_cp
           if (memx_bad) begin
             x_flt = imap_pkg::FLT_MEMX;
             x_fpe = 32'(memx_pe);
+            x_fad = x_faddr + 64'(memx_off);  // base (cN + off) + the PE's offset
           end
           imap_pkg::OP_VIN, imap_pkg::OP_VOUT:
           if (vid_status == 2'd1) x_flt = imap_pkg::FLT_VID_PORT;
@@ -892,7 +894,10 @@ module imap_cp
         x_op <= d_op;
         x_kind <= d_kind;
         x_dflt <= d_flt;
-        x_faddr <= d_faddr;
+        // ldx / stx: the broadcast part of the per-PE address (cN + off), to
+        // which the failing PE's offset is added for the fault report
+        x_faddr <= (d_op == imap_pkg::OP_LDX || d_op == imap_pkg::OP_STX) && d_flt == imap_pkg::FLT_NONE
+                   ? {{32{d_ldxoff[31]}}, d_ldxoff} : d_faddr;
         x_a <= (d_op == imap_pkg::OP_CST) ? d_cd : d_ca;
         x_b <= d_cb;
         x_addr <= d_addr[31:0];

@@ -39,7 +39,8 @@ module imap_pe
     input logic [XROWS*8-1:0] row_in  /*verilator public_flat_rd*/,  // row bus (vin / xld)
     output logic [7:0] ring_q  /*verilator public_flat_rd*/,  // ring register, to both neighbours
     output logic [2:0] st_q  /*verilator public_flat_rd*/,  // to the mask bus: {oob, T, M}
-    output logic [XROWS*8-1:0] row_q  /*verilator public_flat_rd*/  // row read port (vout / xst)
+    output logic [XROWS*8-1:0] row_q  /*verilator public_flat_rd*/,  // row read port (vout / xst)
+    output logic [15:0] xoff_q  // preloaded per-PE offset rb:ra (ldx / stx fault report)
 );
 
   /*verilator no_inline_module*/
@@ -260,6 +261,7 @@ module imap_pe
           imap_pkg::PRE_ADDR: begin
             xa = {{2{cw_pre[31]}}, cw_pre} + {18'h0, (w.pre_nohi ? 8'h00 : hi), lo};
             xaddr_q = xa[AW-1:0];
+            xoff_q <= {(w.pre_nohi ? 8'h00 : hi), lo};
             oob = xa[33] || xa >= 34'(MEM_BYTES);
             st_q <= {oob, w.commit ? tn : st_q[ST], w.commit ? mn : st_q[SM]};
           end

@@ -54,7 +54,7 @@ module imap_top
   imap_pkg::cwx_t cwx;
   logic [31:0] cw_pre;
   logic red_status, red_memx, red_count, any_t, all_t, memx_bad;
-  logic [15:0] memx_pe;
+  logic [15:0] memx_pe, memx_off;
   logic [16:0] active_n;
   logic xe_pf, xe_wr, vid_open, vid_out, vid_put;
   logic [31:0] xe_prow, xe_wrow, vid_oy, vid_ox, vid_py, vid_px;

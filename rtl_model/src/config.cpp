@@ -90,7 +90,8 @@ const std::vector<Mutant>& mutants() {
         {5, "stale_fwd",
          "PE preload: the ring source / per-PE address ignore the register written at the same "
          "edge (stale forwarded register)"},
-        {6, "cp_fwd", "decode: cB of ld / st read without forwarding from execute (stale CP register)"},
+        {6, "cp_fwd",
+         "decode: cB of ld / st read without forwarding from execute (stale CP register)"},
         {7, "shr_carry", "shri / shrv: C is the bit above the last one shifted out"},
         {8, "rall_mask", "rall: the AND includes the masked PEs"},
         {9, "mif_depth", "mif: the mask stack overflows one level late"},
@@ -119,11 +120,12 @@ std::vector<std::string> RtlWaves::scopes(const std::string& top, int pes_total)
     const std::string t = top + ".imap_top";
     std::vector<std::string> s;
     if (groups.empty() && pes.empty()) return s;  // everything
-    // top-level ports (clk, straps, done) and the signals of imap_top
-    s.push_back(t);
+    // top-level ports (clk, straps, done) and the signals of imap_top itself
+    // (not the units below it: "!", model_impl.hpp)
+    s.push_back(t + "!");
     if (has("cp")) s.push_back(t + ".u_cp");
     if (has("board")) s.push_back(t + ".u_board");
-    if (has("array")) s.push_back(t + ".u_array");
+    if (has("array")) s.push_back(t + ".u_array!");  // ring links, mask bus; the PEs below
     if (has("pe")) {
         if (pes.empty())
             for (int p = 0; p < pes_total; ++p)
@@ -174,11 +176,10 @@ std::string gtkw_path(const std::string& waves_path) {
 std::vector<std::string> built_configurations() {
     std::vector<std::string> v;
     for (const detail::ConfigInfo& c : detail::built_configs())
-        v.push_back(std::string(c.name) +
-                    (c.mutants  ? " (mutation check)"
-                     : c.trace == 1 ? " (VCD waves)"
-                     : c.trace == 2 ? " (FST waves)"
-                                    : ""));
+        v.push_back(std::string(c.name) + (c.mutants      ? " (mutation check)"
+                                           : c.trace == 1 ? " (VCD waves)"
+                                           : c.trace == 2 ? " (FST waves)"
+                                                          : ""));
     return v;
 }
 
@@ -203,7 +204,9 @@ std::string built_list(bool traced) {
 }
 }  // namespace
 
-bool has_configuration(const isa::MachineConfig& cfg) { return find(cfg, 0, false) != nullptr; }
+bool has_configuration(const isa::MachineConfig& cfg) {
+    return find(cfg, 0, false) != nullptr;
+}
 
 std::string build_command(const isa::MachineConfig& cfg, bool traced) {
     const std::string current =
@@ -218,18 +221,21 @@ std::string build_command(const isa::MachineConfig& cfg, bool traced) {
 void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_mutants,
                     size_t program_words, size_t phases) {
     using namespace detail;
-    const std::string what = "pes=" + std::to_string(cfg.pes) + " mem_bytes=" +
-                             std::to_string(cfg.mem_bytes) + " ext_bytes=" +
-                             std::to_string(cfg.ext_bytes);
+    const std::string what = "pes=" + std::to_string(cfg.pes) +
+                             " mem_bytes=" + std::to_string(cfg.mem_bytes) +
+                             " ext_bytes=" + std::to_string(cfg.ext_bytes);
     if (needs_mutants) {
         bool any = false;
         for (const ConfigInfo& c : built_configs()) any |= c.mutants != 0;
         if (!any)
-            throw isa::ConfigError("RTL: this build has no mutation-check model (configure with "
-                                   "-DIMAP_RTL_MUTANTS=ON)");
+            throw isa::ConfigError(
+                "RTL: this build has no mutation-check model (configure with "
+                "-DIMAP_RTL_MUTANTS=ON)");
         if (!find(cfg, 0, true))
-            throw isa::ConfigError("RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
-                                   "ext_bytes=65536 only (asked: " + what + ")");
+            throw isa::ConfigError(
+                "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
+                "ext_bytes=65536 only (asked: " +
+                what + ")");
     } else if (!needs_waves && !find(cfg, 0, false)) {
         throw isa::ConfigError("RTL: no configuration " + what +
                                " in this build (built: " + built_list(false) +
@@ -237,8 +243,8 @@ void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_
                                build_command(cfg, false));
     } else if (needs_waves && !find(cfg, 1, false) && !find(cfg, 2, false)) {
         throw isa::ConfigError("RTL waves: no traced configuration " + what +
-                               " in this build (traced: " + built_list(true) + "); build it with: " +
-                               build_command(cfg, true));
+                               " in this build (traced: " + built_list(true) +
+                               "); build it with: " + build_command(cfg, true));
     }
     if (cfg.pe_regs > kHdlRegs)
         throw isa::ConfigError("RTL: pe_regs = " + std::to_string(cfg.pe_regs) +
@@ -254,12 +260,11 @@ void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_
                                std::to_string(kHdlCallDepth) + ", imap_top parameter CALL_DEPTH)");
     const uint64_t path = static_cast<uint64_t>(kHdlXrows) * static_cast<uint64_t>(cfg.pes);
     if (cfg.costs.ext_bytes_per_cycle > path)
-        throw isa::ConfigError("RTL: ext_bytes_per_cycle = " +
-                               std::to_string(cfg.costs.ext_bytes_per_cycle) +
-                               " is more than the design's transfer path moves per cycle (" +
-                               std::to_string(kHdlXrows) + " rows of " + std::to_string(cfg.pes) +
-                               " PEs = " + std::to_string(path) +
-                               " bytes, imap_top parameter XROWS)");
+        throw isa::ConfigError(
+            "RTL: ext_bytes_per_cycle = " + std::to_string(cfg.costs.ext_bytes_per_cycle) +
+            " is more than the design's transfer path moves per cycle (" +
+            std::to_string(kHdlXrows) + " rows of " + std::to_string(cfg.pes) +
+            " PEs = " + std::to_string(path) + " bytes, imap_top parameter XROWS)");
     if (cfg.mem_bytes > (1u << 20))
         throw isa::ConfigError("RTL: mem_bytes = " + std::to_string(cfg.mem_bytes) +
                                " is beyond the control word's 20-bit address (1048576)");

@@ -69,7 +69,7 @@ RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg
     RtlRunResult r;
     r.halted = j.halted;
     r.cycles = j.cycles;
-    r.modeled_ms = cfg.seconds(j.cycles) * 1e3;
+    r.modeled_ms = cfg.milliseconds(j.cycles);
     r.wall_s = j.wall_s;
     r.clocks = j.clocks;
     r.waves_written = j.waves_written;

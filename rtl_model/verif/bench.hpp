@@ -135,7 +135,7 @@ struct Job {
     const isa::Program* prog = nullptr;
     std::vector<std::pair<int, uint32_t>> params;
     Image input[2];
-    Image output[2];  // sized by the caller
+    Image output[2];                  // sized by the caller
     bool attached[2] = {true, true};  // video input ports present
     Listener* listener = nullptr;     // trace port on when set
     uint32_t mutant = 0;              // planted bug (mutation-check model)
@@ -174,7 +174,7 @@ class Bench : public sc_core::sc_module {
     Backdoor& backdoor() { return bd_; }
     Shadow& shadow() { return shadow_; }
     Model& model() { return *dut_; }
-    bool has_replay() const { return replay_ != nullptr; }
+    bool has_replay() const { return replay_; }
     // Re-runs `job` on the replay model with waves in the job's window.
     // Called from the job_done callback (inside the simulation).
     void replay_waves(Job& job);

@@ -81,7 +81,8 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
             const VerilatedScope* s = Verilated::scopeFind(scope.c_str());
             if (!s) throw std::runtime_error("RTL backdoor: no scope " + scope);
             const VerilatedVar* v = s->varFind(name);
-            if (!v) throw std::runtime_error("RTL backdoor: no state element " + scope + "." + name);
+            if (!v)
+                throw std::runtime_error("RTL backdoor: no state element " + scope + "." + name);
             if (bytes != 0 && static_cast<size_t>(v->totalSize()) != bytes)
                 throw std::runtime_error("RTL backdoor: " + scope + "." + name + " has " +
                                          std::to_string(v->totalSize()) + " bytes, expected " +
@@ -147,7 +148,14 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
         } else {
             trace_close();
             tf_ = std::make_unique<TraceFile>();
-            for (const std::string& s : scopes) tf_->dumpvars(99, s);
+            // "scope" = everything under it; "scope!" = its own signals only
+            // (Verilator's level 1: one name below the prefix)
+            for (const std::string& s : scopes) {
+                if (!s.empty() && s.back() == '!')
+                    tf_->dumpvars(1, s.substr(0, s.size() - 1));
+                else
+                    tf_->dumpvars(99, s);
+            }
             dut_.trace(tf_.get(), 99);
             tf_->set_time_unit("1ps");
             tf_->set_time_resolution("1ps");

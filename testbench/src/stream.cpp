@@ -130,15 +130,18 @@ void StreamTestbench::control() {
                 s->video.make_output(0, setup_.roi.w, setup_.roi.h);
                 current_ = s;
                 rec.start_ms = ms(sc_core::sc_time_stamp());
+                const auto m0 = std::chrono::steady_clock::now();
                 model_.cp.start();
                 while (model_.cp.busy()) sc_core::wait(model_.cp.done_event());
+                rec.model_wall_s =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
                 current_ = nullptr;
                 const isa::Machine& m = model_.machine();
                 rec.done_ms = ms(sc_core::sc_time_stamp());
                 rec.latency_ms = rec.done_ms - rec.capture_ms;
                 rec.deadline_met = rec.latency_ms <= setup_.timing.deadline_ms * (1 + 1e-12);
                 rec.cycles = m.cycles();
-                rec.compute_ms = setup_.machine.seconds(rec.cycles) * 1e3;
+                rec.compute_ms = setup_.machine.milliseconds(rec.cycles);
                 rec.stall_ms = ms(model_.cp.video_stall());
                 rec.phases = firmware::phase_table(m);
                 if (model_.cp.fault()) {
@@ -155,7 +158,11 @@ void StreamTestbench::control() {
                     got.data = s->video.output[0].pixels;
                     const g::ImageView lv = vision::view_of(s->frame.left);
                     const g::ImageView rv = vision::view_of(s->frame.right);
+                    const auto g0 = std::chrono::steady_clock::now();
                     const g::DisparityMap want = g::compute(setup_.params, lv, rv, setup_.roi);
+                    rec.golden_wall_s =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - g0)
+                            .count();
                     for (size_t i = 0; i < got.data.size(); ++i)
                         rec.differing += got.data[i] != want.data[i];
                     rec.status = rec.differing == 0 ? "ok" : "mismatch";

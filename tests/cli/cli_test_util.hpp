@@ -14,9 +14,11 @@ struct Result {
     std::string out;  // stdout and stderr together
 };
 
-// Runs `IMAPSIM_EXE args` through the shell and waits for it.
-inline Result run(const std::string& args) {
-    const std::string cmd = std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
+// Runs `IMAPSIM_EXE args` through the shell and waits for it; with `cwd`,
+// in that folder (relative file names in `args` are taken from there).
+inline Result run(const std::string& args, const std::string& cwd = "") {
+    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") +
+                            std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
     Result r;
     FILE* p = popen(cmd.c_str(), "r");
     BOOST_REQUIRE(p != nullptr);

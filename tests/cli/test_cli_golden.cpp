@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "cli_test_util.hpp"
 
 #include "imap/golden/stereo.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/synth.hpp"
 
@@ -136,10 +138,171 @@ BOOST_FIXTURE_TEST_CASE(synth_then_eval_scores_the_scene, Fixture) {
     BOOST_TEST(e.out.find("golden") != std::string::npos);
 }
 
+nlohmann::json read_json(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+BOOST_FIXTURE_TEST_CASE(presets_and_overrides, Fixture) {
+    // --preset quality sets the SPEC A.9 options; a flag given overrides its
+    // preset value; the golden row names the preset.
+    BOOST_REQUIRE(run("synth --seed 3 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --matcher golden ";
+    const Result q = run(ev + "--preset quality --json " + p("q.json"));
+    BOOST_TEST_INFO(q.out);
+    BOOST_REQUIRE(q.code == 0);
+    BOOST_TEST(q.out.find("golden:quality") != std::string::npos);
+    const auto jq = read_json(p("q.json")).at(0).at("params");
+    BOOST_TEST(jq.at("mode") == "joint");
+    BOOST_TEST(jq.at("kc") == 4);
+    BOOST_TEST(jq.at("agg_rx") == 2);
+    BOOST_TEST(jq.at("km") == 1);
+    const Result o =
+        run(ev + "--preset quality --mode single --kc 2 --Wo 99 --Wd 99 --json " + p("o.json"));
+    BOOST_REQUIRE(o.code == 0);
+    const auto jo = read_json(p("o.json")).at(0).at("params");
+    BOOST_TEST(jo.at("mode") == "single");
+    BOOST_TEST(jo.at("kc") == 2);
+    BOOST_TEST(jo.at("Wo") == 99);
+    BOOST_TEST(jo.at("ad_max") == 16);  // still the preset's
+    // The paper preset is today's default: the same map as no preset, no A.9 keys.
+    BOOST_REQUIRE(run(ev + "--preset paper --json " + p("a.json")).code == 0);
+    BOOST_REQUIRE(run(ev + "--json " + p("b.json")).code == 0);
+    const auto ja = read_json(p("a.json")).at(0), jb = read_json(p("b.json")).at(0);
+    BOOST_TEST(ja.at("params") == jb.at("params"));
+    BOOST_TEST(ja.at("nonocc") == jb.at("nonocc"));
+    BOOST_TEST(!ja.at("params").contains("kc"));
+    // golden with an explicit --mode bidir on top of the quality preset
+    const Result g =
+        run("golden " + pair() + " --out " + p("d.png") + " --D 16 --preset quality --mode bidir");
+    BOOST_TEST_INFO(g.out);
+    BOOST_TEST(g.code == 0);
+    BOOST_TEST(g.out.find(" bidir ") != std::string::npos);
+}
+
+BOOST_FIXTURE_TEST_CASE(bad_presets_and_options_are_refused, Fixture) {
+    expect_input_error(*this, "--preset fast", "invalid value 'fast' for --preset");
+    expect_input_error(*this, "--preset quality --census 3", "--census is out of range");
+    expect_input_error(*this, "--agg-rx 8", "--agg-rx is out of range (allowed: 0..7)");
+    expect_input_error(*this, "--dissim sad", "invalid value 'sad' for --dissim");
+    expect_input_error(*this, "--ad-max 256", "--ad-max is out of range (allowed: 0..255)");
+    expect_input_error(*this, "--mode diagonal", "expected single, bidir or joint");
+    expect_input_error(*this, "--km 0 --kb 0", "at least one match weight must be > 0");
+}
+
+BOOST_FIXTURE_TEST_CASE(the_firmware_refuses_a9_options, Fixture) {
+    // Until the firmware implements SPEC A.9, a model run refuses the options
+    // before any work (and writes no report) instead of running the paper's
+    // algorithm against a quality golden.
+    const Result r =
+        run("run --model core --size 64x16 --D 8 --preset quality --report " + p("r.json"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 2);
+    BOOST_TEST(r.out.find("not the A.9 options --mode joint") != std::string::npos);
+    BOOST_TEST(!fs::exists(p("r.json")));
+}
+
+BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 5 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const Result t = run(ev + "--tradeoff --json " + p("t.json") + " --plot " + p("t.png"));
+    BOOST_TEST_INFO(t.out);
+    BOOST_REQUIRE(t.code == 0);
+    BOOST_TEST(fs::exists(p("t.png")));
+    const auto rows = read_json(p("t.json"));
+    bool quality = false, paper = false, sgbm = false;
+    for (const auto& r : rows) {
+        const std::string name = r.at("variant");
+        BOOST_TEST(t.out.find(name) != std::string::npos);
+        if (name == "quality") {
+            quality = true;
+            // the budget: firmware (paper part, measured) + A.9 estimate <= 40 ms
+            BOOST_TEST(r.at("modeled_ms").get<double>() <= 40.0);
+            BOOST_TEST(r.at("a9_cycles_estimate").get<int64_t>() > 0);
+            BOOST_TEST(r.at("fw_cycles_measured").get<int64_t>() > 0);
+        }
+        if (name == "paper") {
+            paper = true;
+            BOOST_TEST(r.at("a9_cycles_estimate").get<int64_t>() == 0);
+        }
+        if (name == "opencv-sgbm") {
+            // present and scored, but never pinned (OpenCV's kernels vary by CPU)
+            sgbm = true;
+            BOOST_TEST(r.at("nonocc").get<double>() >= 0.0);
+            BOOST_TEST(!r.contains("modeled_ms"));
+        }
+    }
+    BOOST_TEST((quality && paper && sgbm));
+    // refused combinations
+    const Result a = run(ev + "--tradeoff --km 3");
+    BOOST_TEST(a.code == 2);
+    BOOST_TEST(a.out.find("drop --km") != std::string::npos);
+    const Result b = run(ev + "--plot " + p("x.png"));
+    BOOST_TEST(b.code == 2);
+    BOOST_TEST(b.out.find("--plot needs --tradeoff") != std::string::npos);
+    BOOST_TEST(!fs::exists(p("x.png")));
+}
+
+BOOST_FIXTURE_TEST_CASE(eval_param_sets, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 4 --size 96x32 --out-dir " + p("scene")).code == 0);
+    {
+        std::ofstream f(p("sets.txt"));
+        f << "# two sets\n--preset paper\n\n--preset quality --kc 2 --Wo 300 --Wd 300\n";
+    }
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const Result r = run(ev + "--param-sets " + p("sets.txt") + " --json " + p("s.json"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const auto rows = read_json(p("s.json"));
+    BOOST_REQUIRE(rows.size() == 2u);
+    BOOST_TEST(rows[0].at("line") == 2);
+    BOOST_TEST(rows[1].at("line") == 4);
+    BOOST_TEST(rows[1].at("params").at("kc") == 2);
+    BOOST_TEST(rows[1].at("params").at("Wo") == 300);
+    // the same score as a plain eval with those flags
+    BOOST_REQUIRE(run(ev + "--matcher golden --preset paper --json " + p("e.json")).code == 0);
+    BOOST_TEST(read_json(p("e.json")).at(0).at("nonocc") == rows[0].at("nonocc"));
+    {
+        std::ofstream f(p("bad.txt"));
+        f << "--preset quality\n--kc many\n";
+    }
+    const Result b = run(ev + "--param-sets " + p("bad.txt") + " --json " + p("b.json"));
+    BOOST_TEST(b.code == 2);
+    BOOST_TEST(b.out.find("bad.txt:2: invalid value 'many' for --kc") != std::string::npos, b.out);
+    BOOST_TEST(!fs::exists(p("b.json")));
+    const Result c = run(ev + "--param-sets " + p("sets.txt") + " --km 2");
+    BOOST_TEST(c.code == 2);
+    BOOST_TEST(c.out.find("drop --km") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(main_job_without_arguments) {
     const Result r = run("");
     BOOST_TEST_INFO(r.out);
     BOOST_TEST(r.code == 0);
     BOOST_TEST(r.out.find("synthetic scene") != std::string::npos);
     BOOST_TEST(r.out.find("bad-1") != std::string::npos);
+}
+
+// Issue 13 item 5: --out-color writes the map colour-mapped: each pixel the
+// colour of the raw map's value, occluded (255) white.
+BOOST_FIXTURE_TEST_CASE(colour_mapped_map, Fixture) {
+    const Result r =
+        run("golden " + pair() + " --D 16 --out " + p("raw.png") + " --out-color " + p("col.png"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const cv::Mat raw = cv::imread(p("raw.png"), cv::IMREAD_UNCHANGED);
+    const cv::Mat col = cv::imread(p("col.png"), cv::IMREAD_UNCHANGED);
+    BOOST_REQUIRE(col.type() == CV_8UC3);
+    BOOST_REQUIRE(col.size() == raw.size());
+    int occluded = 0;
+    for (int y = 0; y < raw.rows; ++y)
+        for (int x = 0; x < raw.cols; ++x) {
+            const int d = raw.at<uint8_t>(y, x);
+            occluded += d == 255;
+            BOOST_TEST((col.at<cv::Vec3b>(y, x) == imap::vision::disparity_colour(d, 16)));
+        }
+    BOOST_TEST(occluded > 0);  // the unfilled map has occlusions to show
+    BOOST_TEST(
+        run("golden " + pair() + " --out " + p("a.png") + " --out-color " + p("c.txt")).code == 2);
+    BOOST_TEST(!fs::exists(p("a.png")));
 }

@@ -72,8 +72,32 @@ BOOST_AUTO_TEST_CASE(report_has_the_documented_keys) {
     BOOST_TEST(j.at("wall_s").get<double>() >= 0);
     BOOST_TEST(j.at("phases").is_object());
     BOOST_TEST(j.at("phases").at("forward").get<uint64_t>() > 0);
-    BOOST_TEST(j.at("params").at("machine").at("pes") == "256");
     BOOST_TEST(j.at("params").at("algorithm").at("D") == 64);
+    // Issue 13 item 6: machine parameters are JSON numbers (booleans for
+    // on/off), each with whether it is an assumption and whether it makes
+    // the machine faster than the published facts (docs/isa.md 2.2).
+    const nlohmann::json& mach = j.at("params").at("machine");
+    BOOST_TEST(mach.at("pes").is_number_integer());
+    BOOST_TEST(mach.at("pes") == 256);
+    BOOST_TEST(mach.at("clock_mhz").is_number());
+    BOOST_TEST(mach.at("clock_mhz").get<double>() == 40.0);
+    BOOST_TEST(mach.at("indirect").is_boolean());
+    BOOST_TEST(mach.at("ring_hop") == 1);
+    for (const auto& [k, val] : mach.items()) BOOST_TEST(!val.is_string(), k);
+    const nlohmann::json& info = j.at("params").at("machine_info");
+    BOOST_TEST(info.size() == mach.size());
+    BOOST_TEST(info.at("pes").at("assumption") == false);
+    BOOST_TEST(info.at("pe_regs").at("assumption") == true);
+    BOOST_TEST(info.at("pe_regs").at("faster") == true);
+    BOOST_TEST(info.at("ext_bytes").at("faster") == false);
+    BOOST_TEST(r.out.find("[A+] assumed, faster than the published facts") != std::string::npos);
+    BOOST_TEST(r.out.find("pe_regs 16 registers") != std::string::npos);
+    // modeled_ms = cycles / 40000 exactly, without float noise in the JSON.
+    const uint64_t cycles = j.at("cycles").get<uint64_t>();
+    BOOST_TEST(j.at("modeled_ms").get<double>() == static_cast<double>(cycles) / 40000.0);
+    const std::string ms = j.at("modeled_ms").dump();
+    BOOST_TEST(ms.size() - ms.find('.') - 1 <= 6u, ms);  // cycles x 25 ns: at most 6 decimals
+    BOOST_TEST(j.at("params").at("firmware").at("param_block").at("0") == 1);
     // the phases add up to the total
     uint64_t sum = 0;
     for (const auto& [k, v] : j.at("phases").items()) sum += v.get<uint64_t>();
@@ -136,5 +160,132 @@ BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
             BOOST_TEST(rep[0].at("phases") == rep[1].at("phases"));
         }
     }
+    fs::remove_all(d);
+}
+
+// Issue 13 item 4: --scene takes the scene's D (tsukuba: 16, as eval) and
+// prints bad-1 against its ground truth, the same numbers as eval.
+BOOST_AUTO_TEST_CASE(scene_folder_gives_d_and_ground_truth_score) {
+    const fs::path d = tmpdir();
+    const std::string dir = std::string(IMAP_SHARED_DATA) + "/middlebury/tsukuba";
+    const std::string rep = (d / "ts.json").string(), ev = (d / "ev.json").string();
+    const Result r = run("run --model core --scene " + dir + " --report " + rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("D=16") != std::string::npos);
+    BOOST_TEST(r.out.find("bit-exact vs golden: yes") != std::string::npos);
+    BOOST_TEST(r.out.find("golden bad-1 vs ground truth (left frame, filled): nonocc") !=
+               std::string::npos);
+    std::ifstream in(rep);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    BOOST_TEST(j.at("params").at("algorithm").at("D") == 16);
+    const Result e = run("eval --scene " + dir + " --matcher golden --json " + ev);
+    BOOST_REQUIRE_MESSAGE(e.code == 0, e.out);
+    std::ifstream ein(ev);
+    const nlohmann::json ej = nlohmann::json::parse(ein).at(0);
+    const nlohmann::json& gt = j.at("ground_truth");
+    BOOST_TEST(gt.at("bad1_nonocc").get<double>() == ej.at("nonocc").get<double>());
+    BOOST_TEST(gt.at("bad1_all").get<double>() == ej.at("all").get<double>());
+    BOOST_TEST(gt.at("bad1_disc").get<double>() == ej.at("disc").get<double>());
+
+    // --left/--right of a scene folder without --D: a note names the scene's D.
+    const Result l = run("run --model core " + scene("tsukuba") + " --roi 100,100,64,32");
+    BOOST_TEST_INFO(l.out);
+    BOOST_TEST(l.code == 0);
+    BOOST_TEST(l.out.find("scenes.json gives ndisp 16; this run uses --D 64") != std::string::npos);
+    // --gt with a scale: scored over every pixel of the ROI.
+    const Result g = run("run --model core " + scene("tsukuba") + " --D 16 --roi 100,100,64,32" +
+                         " --gt " + dir + "/gt.png --gt-scale 16");
+    BOOST_TEST_INFO(g.out);
+    BOOST_TEST(g.code == 0);
+    BOOST_TEST(g.out.find("every pixel of the ROI") != std::string::npos);
+    // Errors: both sources, --gt without images, --gt-scale alone.
+    BOOST_TEST(run("run --scene " + dir + " " + scene("tsukuba")).code == 2);
+    BOOST_TEST(run("run --gt " + dir + "/gt.png").code == 2);
+    BOOST_TEST(run("run --gt-scale 4").code == 2);
+    fs::remove_all(d);
+}
+
+// Issue 13 item 3: the program that ran and its constants can be written,
+// re-assembled from the firmware sources by hand, disassembled, and run with
+// exec to the same map.
+BOOST_AUTO_TEST_CASE(emitted_program_and_defines_reassemble_and_exec) {
+    const fs::path d = tmpdir();
+    const std::string bin = (d / "dp.bin").string(), inc = (d / "dp.inc").string(),
+                      map = (d / "map.png").string();
+    const std::string synth = (d / "scene").string();
+    BOOST_REQUIRE(run("synth --seed 3 --size 80x24 --out-dir " + synth).code == 0);
+    const std::string images = " --left " + synth + "/left.png --right " + synth + "/right.png";
+    const Result r = run("run --model core --D 12 --roi 4,2,70,20" + images + " --out " + map +
+                         " --emit-program " + bin + " --emit-defines " + inc);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_REQUIRE(fs::is_regular_file(bin));
+    std::ifstream in(inc);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    BOOST_TEST(text.find(".equ X0 4\n") != std::string::npos);
+    BOOST_TEST(text.find(".equ D 12\n") != std::string::npos);
+    // Re-assemble: the emitted source includes dp.s itself.
+    const std::string frame = inc, again = (d / "again.bin").string();
+    BOOST_TEST(text.find(";     imapsim asm ") != std::string::npos);
+    const Result as = run("asm " + frame + " -o " + again);
+    BOOST_REQUIRE_MESSAGE(as.code == 0, as.out);
+    const std::string da = (d / "a.s").string(), db = (d / "b.s").string();
+    BOOST_REQUIRE(run("disasm " + bin + " --no-comments -o " + da).code == 0);
+    BOOST_REQUIRE(run("disasm " + again + " --no-comments -o " + db).code == 0);
+    auto slurp = [](const std::string& p) {
+        std::ifstream f(p);
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    };
+    BOOST_TEST(slurp(da).size() > 1000u);
+    BOOST_TEST((slurp(da) == slurp(db)));
+    // The disassembly re-assembles too (edit, re-assemble, exec).
+    const std::string edited = (d / "edited.bin").string();
+    BOOST_REQUIRE_MESSAGE(run("asm " + da + " -o " + edited).code == 0, "disassembly reassembles");
+    // exec with the command line the header gives: the same map.
+    const size_t at = text.find(";     imapsim exec ");
+    BOOST_REQUIRE(at != std::string::npos);
+    std::string cmd = text.substr(at + 19, text.find('\n', at) - at - 19);
+    const std::string exec_map = (d / "exec.png").string();
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const size_t p = cmd.find(from);
+        BOOST_REQUIRE_MESSAGE(p != std::string::npos, from << " in " << cmd);
+        cmd.replace(p, from.size(), to);
+    };
+    replace(bin, edited);
+    replace("--left LEFT --right RIGHT", images.substr(1));
+    replace("--out-left MAP.png", "--out-left " + exec_map);
+    const Result x = run("exec " + cmd + " --model core");
+    BOOST_TEST_INFO(x.out);
+    BOOST_REQUIRE(x.code == 0);
+    BOOST_TEST((slurp(exec_map) == slurp(map)));  // PNG bytes: same pixels, same encoder
+    fs::remove_all(d);
+}
+
+// Issue 13 items 2 and 5: every output is checked before the run; the
+// colour-mapped map has the raw map's occlusions in white.
+BOOST_AUTO_TEST_CASE(outputs_checked_first_and_colour_map) {
+    const fs::path d = tmpdir();
+    fs::create_directories(d / "taken.png");
+    for (const char* flag :
+         {"--out", "--out-color", "--report", "--emit-program", "--emit-defines"}) {
+        const Result r = run(std::string("run --model core --size 64x32 --D 8 ") + flag + " " +
+                             (d / "taken.png").string());
+        BOOST_TEST_CONTEXT(flag << "\n" << r.out) {
+            BOOST_TEST(r.code == 2);
+            BOOST_TEST(r.out.find("is a folder") != std::string::npos);
+            BOOST_TEST(r.out.find("bit-exact") == std::string::npos);
+        }
+    }
+    const Result same = run("run --size 64x32 --D 8 --out " + (d / "x.png").string() +
+                            " --out-color " + (d / "x.png").string());
+    BOOST_TEST(same.code == 2);
+    BOOST_TEST(same.out.find("name the same file") != std::string::npos);
+    const std::string raw = (d / "raw.png").string(), col = (d / "col.png").string();
+    const Result r =
+        run("run --model core --size 64x32 --D 8 --out " + raw + " --out-color " + col);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(fs::is_regular_file(col));
     fs::remove_all(d);
 }

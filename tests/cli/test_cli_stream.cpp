@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "cli_test_util.hpp"
+#include "imap/vision/colour.hpp"
 
 extern char** environ;
 
@@ -100,8 +101,16 @@ BOOST_AUTO_TEST_CASE(thirty_frames_rectified_round_trip) {
     cv::VideoCapture vc(out + "/sbs.avi");
     BOOST_REQUIRE(vc.isOpened());
     BOOST_TEST(vc.get(cv::CAP_PROP_FRAME_WIDTH) == 256.0);
+    // Issue 13 item 5: a legend under the map (colour bar, white occlusion box).
+    BOOST_TEST(vc.get(cv::CAP_PROP_FRAME_HEIGHT) == 96.0 + imap::vision::legend_height());
     int frames = 0;
-    for (cv::Mat f; vc.read(f);) ++frames;
+    for (cv::Mat f; vc.read(f);) {
+        if (frames++ > 0) continue;
+        const cv::Vec3b box = f.at<cv::Vec3b>(96 + 3, 256 - 3);  // JPEG: about white
+        BOOST_TEST((box[0] > 200 && box[1] > 200 && box[2] > 200));
+        const cv::Vec3b bar0 = f.at<cv::Vec3b>(96 + 3, 128 + 3);  // disparity 0: dark blue
+        BOOST_TEST((bar0[0] > 100 && bar0[2] < 60));
+    }
     BOOST_TEST(frames == 30);
 
     // The same sequence rendered directly as rectified pairs.
@@ -118,6 +127,30 @@ BOOST_AUTO_TEST_CASE(thirty_frames_rectified_round_trip) {
     // a one-row rectification error costs about +20.
     BOOST_TEST(dir < 15.0);
     BOOST_TEST(rt <= dir + 6.5);
+}
+
+// Output names without a folder ("n1.avi") are files in the current folder,
+// beside --out-dir or not (issue: "cannot make absolute path", exit 4).
+BOOST_AUTO_TEST_CASE(bare_output_file_names) {
+    const fs::path d = tmpdir("bare");
+    const Result r =
+        run("stream --synthetic 3 --size 64x48 --D 8 --out-dir n1 --video n1.avi --json n7.json "
+            "--csv n7.csv",
+            d.string());
+    BOOST_TEST_MESSAGE(r.out);
+    BOOST_REQUIRE_MESSAGE(r.code == 0, r.out);
+    BOOST_TEST(fs::is_regular_file(d / "n1.avi"));
+    BOOST_TEST(fs::is_regular_file(d / "n7.json"));
+    BOOST_TEST(fs::is_regular_file(d / "n7.csv"));
+    BOOST_TEST(count_files(d / "n1", "disp_") == 3u);
+    BOOST_TEST(read_json(d / "n7.json")["summary"]["ok"] == 3);
+    // A bare name given for the folder's own log is the same as the default.
+    const Result r2 = run("stream --synthetic 2 --size 64x48 --D 8 --out-dir . --json s.json",
+                          (d / "n1").string());
+    BOOST_REQUIRE_MESSAGE(r2.code == 0, r2.out);
+    BOOST_TEST(fs::is_regular_file(d / "n1" / "s.json"));
+    BOOST_TEST(fs::is_regular_file(d / "n1" / "stream.csv"));
+    fs::remove_all(d);
 }
 
 BOOST_AUTO_TEST_CASE(ctrl_c_leaves_consistent_partial_logs) {

@@ -30,23 +30,15 @@ inline std::string describe(const g::Params& p, int N, int H) {
 // Fills the PE's R' / L' buffers as docs/firmware.md section 1 lays them out.
 inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, const Line& ln,
                          bool left) {
-    auto put = [&](int base, int idx, int v) { m.mem_write(pe, uint32_t(base + idx), uint8_t(v)); };
     const int N = f.N;
-    for (int k = 0; k <= f.kmax; ++k) {
-        int x = -1;
-        if (!f.bidir)
-            x = k - 1;
-        else
-            x = left ? f.s - k : f.s + k;
-        put(f.imgr, k, x >= 0 && x < N ? ln.R[x] : 0);
+    auto px = [&](const std::vector<uint8_t>& v, int x) { return x >= 0 && x < N ? v[size_t(x)] : 0; };
+    for (int k = 0; k <= f.kr; ++k) {
+        const int x = !f.bidir ? k - 1 : left ? f.s - k : f.s + k;
+        m.mem_write(pe, uint32_t(f.rp_addr(k)), uint8_t(px(ln.R, x)));
     }
-    for (int mi = 0; mi < f.kmax + f.D + 1; ++mi) {
-        int x = -1;
-        if (!f.bidir)
-            x = mi - 1;
-        else
-            x = left ? f.s + f.D - 1 - mi : f.s + mi;
-        put(f.imgl, mi, x >= 0 && x < N ? ln.L[x] : 0);
+    for (int mi = 0; mi <= f.kl; ++mi) {
+        const int x = !f.bidir ? mi - 1 : left ? f.s + f.D - 1 - mi : f.s + mi;
+        m.mem_write(pe, uint32_t(f.lp_addr(mi)), uint8_t(px(ln.L, x)));
     }
 }
 

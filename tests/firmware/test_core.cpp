@@ -16,7 +16,7 @@ void check_core(const g::Params& p, int N, int H, std::mt19937& rng) {
     cfg.pes = bidir ? 2 * H : std::max(H, 2);
     cfg.mem_bytes = 4096;
     const fw::ForwardPlan f = fw::plan_forward(p, N, cfg);
-    const isa::Program prog = fw::assemble(p, f, "dp_core_test.s", {{"HROI", H}, {"HB", H}});
+    const isa::Program prog = fw::assemble_test(p, f, "dp_core_test.s", H, int(cfg.pes));
     isa::Machine m(cfg);
     m.load(prog);
     const std::vector<Line> lines = random_lines(rng, N, H, p.D);
@@ -34,8 +34,8 @@ void check_core(const g::Params& p, int N, int H, std::mt19937& rng) {
                                             g::ImageView{R.data(), N, H, N}, g::Roi{0, 0, N, H});
     int bad = 0;
     for (int y = 0; y < H; ++y) {
-        const int pe = bidir ? 2 * y + 1 : y;
         for (int x = 0; x < N; ++x) {
+            const int pe = bidir ? 2 * y + (x & 1) : y;
             const int got = m.mem_read(pe, uint32_t(f.map + x));
             const int exp = want.at(x, y);
             if (got != exp && ++bad <= 5)

@@ -19,9 +19,11 @@ namespace {
 
 using namespace fwtest;
 
-uint8_t fw_pointer(const isa::Machine& m, int pe, const fw::ForwardPlan& f, int k, int j) {
-    const uint8_t byte = m.ext_read(pe, uint32_t((k - 1) * f.dq + j / 4));
-    return uint8_t((byte >> (2 * (3 - j % 4))) & 3);
+uint8_t fw_pointer(const isa::Machine& m, int pe, const fw::ForwardPlan& f, int kind, int k,
+                   int j) {
+    return f.pointer(
+        kind, k, j, [&](uint32_t a) { return m.mem_read(pe, a); },
+        [&](uint32_t a) { return m.ext_read(pe, a); });
 }
 
 void check_case(const g::Params& p, int N, int H, std::mt19937& rng) {
@@ -30,7 +32,7 @@ void check_case(const g::Params& p, int N, int H, std::mt19937& rng) {
     cfg.pes = bidir ? 2 * H : std::max(H, 2);
     cfg.mem_bytes = 4096;
     const fw::ForwardPlan f = fw::plan_forward(p, N, cfg);
-    const isa::Program prog = fw::assemble_forward(p, f);
+    const isa::Program prog = fw::assemble_test(p, f, "dp_forward_test.s", H, int(cfg.pes));
     isa::Machine m(cfg);
     m.load(prog);
 
@@ -48,7 +50,7 @@ void check_case(const g::Params& p, int N, int H, std::mt19937& rng) {
                 for (int j = 0; j < g::levels_at(site, N, p.D); ++j) {
                     const uint8_t want = t.bp(site, j);
                     if (want == g::kNone) continue;
-                    const uint8_t got = fw_pointer(m, y, f, site + 1, j);
+                    const uint8_t got = fw_pointer(m, y, f, 0, site + 1, j);
                     ++checked;
                     if (got != want && ++bad <= 5)
                         BOOST_ERROR("single line " << y << " bp(" << site << "," << j
@@ -61,7 +63,7 @@ void check_case(const g::Params& p, int N, int H, std::mt19937& rng) {
             for (int j = 0; j < g::levels_at(site, N, p.D); ++j) {
                 const uint8_t want = t.bp(site, j);
                 if (want == g::kNone) continue;
-                const uint8_t got = fw_pointer(m, 2 * y + 1, f, site - f.s, j);
+                const uint8_t got = fw_pointer(m, 2 * y + 1, f, 1, site - f.s, j);
                 ++checked;
                 if (got != want && ++bad <= 5)
                     BOOST_ERROR("right line " << y << " bp(" << site << "," << j << ") firmware "
@@ -71,7 +73,7 @@ void check_case(const g::Params& p, int N, int H, std::mt19937& rng) {
             for (int j = 0; j < (site < 0 ? p.D : g::levels_at(site, N, p.D)); ++j) {
                 const uint8_t want = t.fp(site, j);
                 if (want == g::kNone) continue;
-                const uint8_t got = fw_pointer(m, 2 * y, f, f.s - 1 - site, p.D - 1 - j);
+                const uint8_t got = fw_pointer(m, 2 * y, f, 0, f.s - 1 - site, p.D - 1 - j);
                 ++checked;
                 if (got != want && ++bad <= 5)
                     BOOST_ERROR("left line " << y << " fp(" << site << "," << j << ") firmware "

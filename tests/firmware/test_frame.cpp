@@ -29,8 +29,7 @@ BOOST_AUTO_TEST_CASE(random_frames_small_arrays) {
         roi.x0 = uni(0, W - roi.w);
         roi.y0 = uni(0, Hi - roi.h);
         const g::Params p = random_params(rng, roi.w);
-        int P = uni(2, 24);
-        if (p.vote && P < 6) P = 6;  // the vote across batches needs 3 lines per batch
+        const int P = uni(2, 24);  // 2..5 with the vote: one line per batch (docs/firmware.md)
         const Frame fr = random_frame(rng, W, Hi, p.D);
         BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
                            << " vote=" << p.vote << " frame=" << g::to_string(p.frame) << " P=" << P

@@ -117,3 +117,29 @@ BOOST_AUTO_TEST_CASE(edge_cases) {
         }
     }
 }
+
+// SPEC Part B: any PE count >= 2 runs. With the vote on, 2 to 5 PEs hold
+// fewer than 3 lines per batch: the firmware runs one line per batch and
+// keeps the pointer tables of the neighbouring lines in the external memory
+// (this used to be refused).
+BOOST_AUTO_TEST_CASE(two_to_five_pes_with_the_vote) {
+    std::mt19937 rng(105);
+    const Frame fr = random_frame(rng, 30, 12, 10);
+    const g::Roi roi{2, 1, 26, 9};
+    for (int P : {2, 3, 4, 5})
+        for (int mode = 0; mode < 2; ++mode)
+            for (int seed = 0; seed < 2; ++seed) {
+                g::Params p;
+                p.D = 10;
+                p.mode = mode ? g::Mode::Bidir : g::Mode::Single;
+                p.frame = kFrames[(P + seed) % 3];
+                if (seed == 1 && mode == 1) {
+                    p.seed_disp.free = false;
+                    p.seed_disp.value = 3;
+                }
+                BOOST_TEST_CONTEXT("P=" << P << " " << describe(p, roi.w, roi.h)
+                                        << " frame=" << g::to_string(p.frame)) {
+                    check_frame(p, fr, roi, P);
+                }
+            }
+}

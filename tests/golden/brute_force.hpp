@@ -25,6 +25,7 @@ struct Line {
     const uint8_t* L;
     const uint8_t* R;
     int N;
+    std::function<int64_t(int, int)> wm = nullptr;  // match cost of (i, j); empty = SPEC A.1
 };
 
 inline bool valid(int N, int D, int i, int j) {
@@ -35,6 +36,7 @@ inline bool valid(int N, int D, int i, int j) {
 inline int64_t step_cost(const Line& l, int i, int j, int step) {
     if (step == g::kD) return l.p.Wd;
     if (step == g::kO) return l.p.Wo;
+    if (l.wm) return l.wm(i, j);
     const int a = l.R[i], b = l.L[i + j];
     const int64_t diff = a > b ? a - b : b - a;
     const int64_t dark = l.p.gb - (a < b ? a : b);

@@ -7,8 +7,10 @@
 // kNone) that stereo.hpp defines as part of the API.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,11 +65,17 @@ inline int seed_col(const g::Params& p, int N) {
     return best;
 }
 
+// The match cost of state (i, j) of one line: SPEC A.1's Wm, or the A.9
+// aggregated cost (a9_cost below).
+using CostFn = std::function<int64_t(int i, int j)>;
+
 struct LineRef {
     int N = 0, D = 0;
     bool bidir = false;
+    bool joint = false;  // A.9: forward over sites <= s, cost-to-go over sites >= s
     int s = 0;
     int ds = -1;  // -1 = free
+    int js = -1;  // joint: the meeting level
     // [i + 1][j] for i = -1..N-1. E/Er/bp: right wavefront; G/Gr/fp: left.
     std::vector<std::vector<int64_t>> E, G;
     std::vector<std::vector<char>> Er, Gr;
@@ -80,10 +88,12 @@ struct LineRef {
     bool right_ok(int i, int j) const {
         if (!valid(i, j)) return false;
         if (bidir && i < s) return false;
+        if (joint && i > s) return false;
         return Er[i + 1][j] != 0;
     }
     // A state of the left wavefront that is valid and reachable.
     bool left_ok(int i, int j) const {
+        if (joint) return valid(i, j) && i >= s && Gr[i + 1][j] != 0;
         if (!bidir || !valid(i, j) || i > s - 1) return false;
         return Gr[i + 1][j] != 0;
     }
@@ -109,15 +119,14 @@ struct Best {
     }
 };
 
-// A.3 recurrence for sites first..N-1 (right wavefront).
-inline void right_pass(const g::Params& p, const uint8_t* L, const uint8_t* R, LineRef& t,
-                       int first) {
-    for (int i = first; i <= t.N - 1; ++i) {
+// A.3 recurrence for sites first..last (right wavefront).
+inline void right_pass(const g::Params& p, const CostFn& wmf, LineRef& t, int first, int last) {
+    for (int i = first; i <= last; ++i) {
         for (int j = 0; j < t.D; ++j) {  // increasing j: O reads the same site
             if (!t.valid(i, j)) continue;
             Best b;
-            b.consider(t.right_ok(i - 1, j),
-                       t.right_ok(i - 1, j) ? t.E[i][j] + wm(p, R[i], L[i + j]) : 0, g::kM);
+            b.consider(t.right_ok(i - 1, j), t.right_ok(i - 1, j) ? t.E[i][j] + wmf(i, j) : 0,
+                       g::kM);
             b.consider(t.right_ok(i - 1, j + 1),
                        t.right_ok(i - 1, j + 1) ? t.E[i][j + 1] + p.Wd : 0, g::kD);
             b.consider(t.right_ok(i, j - 1), t.right_ok(i, j - 1) ? t.E[i + 1][j - 1] + p.Wo : 0,
@@ -129,10 +138,30 @@ inline void right_pass(const g::Params& p, const uint8_t* L, const uint8_t* R, L
     }
 }
 
+// A.4 cost-to-go recurrence for sites hi-1 down to lo, levels in decreasing j.
+inline void left_pass(const g::Params& p, const CostFn& wmf, LineRef& t, int hi, int lo) {
+    for (int i = hi - 1; i >= lo; --i) {
+        for (int j = t.D - 1; j >= 0; --j) {
+            if (!t.valid(i, j)) continue;
+            Best b;
+            const bool m = t.left_ok(i + 1, j);
+            b.consider(m, m ? t.G[i + 2][j] + wmf(i + 1, j) : 0, g::kM);
+            const bool d = t.left_ok(i + 1, j - 1);
+            b.consider(d, d ? t.G[i + 2][j - 1] + p.Wd : 0, g::kD);
+            const bool o = t.left_ok(i, j + 1);
+            b.consider(o, o ? t.G[i + 1][j + 1] + p.Wo : 0, g::kO);
+            t.Gr[i + 1][j] = b.have ? 1 : 0;
+            t.G[i + 1][j] = b.have ? b.cost : 0;
+            t.fp[i + 1][j] = b.have ? b.step : g::kNone;
+        }
+    }
+}
+
 }  // namespace detail
 
-// Forward pass(es) of A.3 / A.4 for one scanline (L, R: N pixels each).
-inline LineRef forward(const g::Params& p, const uint8_t* L, const uint8_t* R, int N) {
+// Forward pass(es) of A.3 / A.4 (and A.9 joint) for one scanline of length N
+// whose match cost of state (i, j) is wmf(i, j).
+inline LineRef forward(const g::Params& p, int N, const CostFn& wmf) {
     LineRef t;
     t.N = N;
     t.D = p.D;
@@ -153,12 +182,39 @@ inline LineRef forward(const g::Params& p, const uint8_t* L, const uint8_t* R, i
             t.E[0][j] = static_cast<int64_t>(j) * p.Wo;
             t.Er[0][j] = 1;
         }
-        detail::right_pass(p, L, R, t, 0);
-        t.right_cost = t.E[N][0];
-        return t;
+        if (p.mode != g::Mode::Joint) {
+            detail::right_pass(p, wmf, t, 0, N - 1);
+            t.right_cost = t.E[N][0];
+            return t;
+        }
     }
 
     const int s = seed_col(p, N);
+    if (p.mode == g::Mode::Joint) {
+        // A.9 joint: E over sites 0..s (from column -1 above), G from the end
+        // state (N-1, 0) down to site s, meeting at argmin E + G (smallest j;
+        // the seed disparity when fixed).
+        t.joint = true;
+        t.s = s;
+        t.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
+        detail::right_pass(p, wmf, t, 0, s);
+        t.G[N][0] = 0;
+        t.Gr[N][0] = 1;
+        t.fp[N][0] = g::kM;
+        detail::left_pass(p, wmf, t, N - 1, s);
+        bool have = false;
+        for (int j = 0; j < t.D; ++j) {
+            if (!t.right_ok(s, j) || !t.left_ok(s, j)) continue;
+            if (t.ds >= 0 && j != t.ds) continue;
+            const int64_t c = t.E[s + 1][j] + t.G[s + 1][j];
+            if (!have || c < t.right_cost) {
+                have = true;
+                t.right_cost = c;
+                t.js = j;
+            }
+        }
+        return t;
+    }
     const int ds = p.seed_disp.free ? -1 : p.seed_disp.value;
     t.s = s;
     t.ds = ds;
@@ -180,7 +236,7 @@ inline LineRef forward(const g::Params& p, const uint8_t* L, const uint8_t* R, i
             t.bp[s + 1][j] = g::kO;
         }  // j < ds: unreachable
     }
-    detail::right_pass(p, L, R, t, s + 1);
+    detail::right_pass(p, wmf, t, s + 1, N - 1);
     t.right_cost = t.E[N][0];
 
     // A.4 left wavefront, site s-1.
@@ -197,23 +253,14 @@ inline LineRef forward(const g::Params& p, const uint8_t* L, const uint8_t* R, i
         }  // j > ds: unreachable
     }
     // i < s-1, for i = s-2 down to -1, levels in decreasing j.
-    for (int i = s - 2; i >= -1; --i) {
-        for (int j = t.D - 1; j >= 0; --j) {
-            if (!t.valid(i, j)) continue;
-            detail::Best b;
-            const bool m = t.left_ok(i + 1, j);
-            b.consider(m, m ? t.G[i + 2][j] + wm(p, R[i + 1], L[i + 1 + j]) : 0, g::kM);
-            const bool d = t.left_ok(i + 1, j - 1);
-            b.consider(d, d ? t.G[i + 2][j - 1] + p.Wd : 0, g::kD);
-            const bool o = t.left_ok(i, j + 1);
-            b.consider(o, o ? t.G[i + 1][j + 1] + p.Wo : 0, g::kO);
-            t.Gr[i + 1][j] = b.have ? 1 : 0;
-            t.G[i + 1][j] = b.have ? b.cost : 0;
-            t.fp[i + 1][j] = b.have ? b.step : g::kNone;
-        }
-    }
+    detail::left_pass(p, wmf, t, s - 1, -1);
     t.left_cost = t.G[0][0];
     return t;
+}
+
+// Forward pass(es) with SPEC A.1's Wm on pixel rows L and R (N pixels each).
+inline LineRef forward(const g::Params& p, const uint8_t* L, const uint8_t* R, int N) {
+    return forward(p, N, [&](int i, int j) { return wm(p, R[i], L[i + j]); });
 }
 
 // Source state of a step that arrives at (i, j) (A.2).
@@ -284,6 +331,32 @@ inline std::vector<Ev> backtrack(const LineRef* above, const LineRef& self, cons
     if (!vote) above = below = nullptr;
     std::vector<Ev> ev;
     const int guard = 4 * (self.N + self.D) + 8;
+    if (self.joint) {
+        // A.9: forward from (s, js) along fp to the end state (N-1, 0), the
+        // events reversed (backtrack order), then back from (s, js) along bp.
+        int i = self.s, j = self.js;
+        for (int n = 0; n < guard && i < self.N - 1; ++n) {
+            const int v = voted_fp(above, self, below, i, j);
+            int ti = 0, tj = 0;
+            target_of(v, i, j, ti, tj);
+            i = ti;
+            j = tj;
+            ev.push_back({i, j, v});
+        }
+        std::vector<Ev> rev(ev.rbegin(), ev.rend());
+        ev = rev;
+        i = self.s;
+        j = self.js;
+        for (int n = 0; n < guard && i > -1; ++n) {
+            const int v = voted_bp(above, self, below, i, j);
+            ev.push_back({i, j, v});
+            int si = 0, sj = 0;
+            source_of(v, i, j, si, sj);
+            i = si;
+            j = sj;
+        }
+        return ev;
+    }
     if (self.bidir) {
         int i = -1, j = 0;
         for (int n = 0; n < guard; ++n) {
@@ -366,14 +439,98 @@ inline std::vector<uint8_t> fill(const std::vector<uint8_t>& row) {
     return out;
 }
 
-// The whole of Part A on images of width W (row stride W), ROI roi.
+// ---- SPEC A.9 match cost (docs/golden.md, "Options"), literally ----------
+
+// Pixel (x, y) of the ROI with replicated borders (coordinates clamped).
+inline int roi_px(const std::vector<uint8_t>& img, int W, const g::Roi& roi, int x, int y) {
+    x = x < 0 ? 0 : (x > roi.w - 1 ? roi.w - 1 : x);
+    y = y < 0 ? 0 : (y > roi.h - 1 ? roi.h - 1 : y);
+    return img[static_cast<size_t>(roi.y0 + y) * W + roi.x0 + x];
+}
+
+// Census: bit k for the k-th neighbour (dx, dy) * r of the order
+// (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1): set when darker.
+inline int census(const std::vector<uint8_t>& img, int W, const g::Roi& roi, int x, int y, int r) {
+    static const int dx[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
+    static const int dy[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+    const int c = roi_px(img, W, roi, x, y);
+    int code = 0;
+    for (int k = 0; k < 8; ++k)
+        if (roi_px(img, W, roi, x + dx[k] * r, y + dy[k] * r) < c) code |= 1 << k;
+    return code;
+}
+
+inline int hamming(int a, int b) {
+    int n = 0;
+    for (int v = a ^ b; v != 0; v >>= 1) n += v & 1;
+    return n;
+}
+
+// Distance from a to the Birchfield-Tomasi interval of pixel x of a row:
+// the smallest |a - v| over every v between the least and the greatest of
+// I(x), (I(x) + I(x-1)) / 2, (I(x) + I(x+1)) / 2 (halves rounded down).
+inline int bt_half(int a, const std::vector<uint8_t>& img, int W, const g::Roi& roi, int x, int y) {
+    const int v = roi_px(img, W, roi, x, y);
+    const int l = (v + roi_px(img, W, roi, x - 1, y)) / 2;
+    const int r = (v + roi_px(img, W, roi, x + 1, y)) / 2;
+    const int lo = std::min({v, l, r}), hi = std::max({v, l, r});
+    int best = 256;
+    for (int u = lo; u <= hi; ++u) best = std::min(best, std::abs(a - u));
+    return best;
+}
+
+// The A.9 cost of the pixel pair right (xr, y), left (xl, y). A position
+// outside the ROI has the terms (value, census code, BT interval) of the
+// nearest ROI position.
+inline int64_t a9_pixel(const g::Params& p, const std::vector<uint8_t>& left,
+                        const std::vector<uint8_t>& right, int W, const g::Roi& roi, int xr, int xl,
+                        int y) {
+    xr = std::min(std::max(xr, 0), roi.w - 1);
+    xl = std::min(std::max(xl, 0), roi.w - 1);
+    const int a = roi_px(right, W, roi, xr, y), b = roi_px(left, W, roi, xl, y);
+    int dis = std::abs(a - b);
+    if (p.dissim == g::Dissim::Bt)
+        dis = std::min(bt_half(a, left, W, roi, xl, y), bt_half(b, right, W, roi, xr, y));
+    dis = std::min(dis, p.ad_max);
+    int64_t c = static_cast<int64_t>(p.km) * dis +
+                static_cast<int64_t>(p.kb) * std::max(0, p.gb - std::min(a, b));
+    if (p.kc > 0)
+        c += static_cast<int64_t>(p.kc) *
+             hamming(census(right, W, roi, xr, y, p.census), census(left, W, roi, xl, y, p.census));
+    return c;
+}
+
+// A.9 Wm(i, j) of ROI line y: the pixel costs of right x = i+u and left
+// x = i+u+j (each clamped into the ROI) of lines y+v (clamped), summed over
+// |u| <= agg_rx, |v| <= agg_ry.
+inline int64_t a9_cost(const g::Params& p, const std::vector<uint8_t>& left,
+                       const std::vector<uint8_t>& right, int W, const g::Roi& roi, int y, int i,
+                       int j) {
+    int64_t sum = 0;
+    for (int v = -p.agg_ry; v <= p.agg_ry; ++v) {
+        const int yy = std::min(std::max(y + v, 0), roi.h - 1);
+        for (int u = -p.agg_rx; u <= p.agg_rx; ++u)
+            sum += a9_pixel(p, left, right, W, roi, i + u, i + u + j, yy);
+    }
+    return sum;
+}
+
+inline bool a9_cost_on(const g::Params& p) {
+    return p.dissim != g::Dissim::Ad || p.ad_max < 255 || p.kc > 0 || p.agg_rx > 0 || p.agg_ry > 0;
+}
+
+// The whole of Part A (and A.9) on images of width W (row stride W), ROI roi.
 inline std::vector<uint8_t> compute(const g::Params& p, const std::vector<uint8_t>& left,
                                     const std::vector<uint8_t>& right, int W, const g::Roi& roi,
                                     bool do_fill) {
     std::vector<LineRef> lines;
     for (int y = 0; y < roi.h; ++y) {
         const size_t off = static_cast<size_t>(roi.y0 + y) * W + roi.x0;
-        lines.push_back(forward(p, left.data() + off, right.data() + off, roi.w));
+        if (a9_cost_on(p))
+            lines.push_back(forward(
+                p, roi.w, [&](int i, int j) { return a9_cost(p, left, right, W, roi, y, i, j); }));
+        else
+            lines.push_back(forward(p, left.data() + off, right.data() + off, roi.w));
     }
     std::vector<uint8_t> out;
     for (int y = 0; y < roi.h; ++y) {

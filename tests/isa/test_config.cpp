@@ -1,6 +1,8 @@
 // Machine parameters: validation messages, setting by name, listing.
 #define BOOST_TEST_MODULE isa_config
 #include <boost/test/unit_test.hpp>
+#include <charconv>
+#include <string>
 
 #include "helpers.hpp"
 
@@ -99,4 +101,21 @@ BOOST_AUTO_TEST_CASE(every_parameter_is_listed_with_docs) {
     MachineConfig d;
     for (const ParamInfo& p : l) BOOST_CHECK_NO_THROW(d.set(p.name, p.value));
     BOOST_CHECK_EQUAL(d.costs.ring_hop, 5u);
+}
+
+// Issue 13 item 6: modeled milliseconds with one rounding, so that a report
+// shows 288878 cycles at 40 MHz as 7.22195 (cycles x 25 ns: at most six
+// decimals), not 7.2219500000000005 (seconds() x 1000 rounds twice).
+BOOST_AUTO_TEST_CASE(milliseconds_have_no_float_noise) {
+    imap::isa::MachineConfig cfg;  // 40 MHz
+    BOOST_TEST(cfg.milliseconds(288878) == 7.22195);
+    int noisy = 0;
+    for (uint64_t c = 0; c < 200000; c += 7) {
+        char buf[64];
+        const auto res = std::to_chars(buf, buf + sizeof buf, cfg.milliseconds(c));
+        const std::string s(buf, res.ptr);
+        const size_t dot = s.find('.');
+        noisy += dot != std::string::npos && s.size() - dot - 1 > 6;
+    }
+    BOOST_TEST(noisy == 0);
 }

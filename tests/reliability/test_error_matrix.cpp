@@ -451,7 +451,7 @@ ERROR_ROW(run_negative_km, kInput, RUN " --km -1", "--km", "-1", "0..1000000")
 ERROR_ROW(golden_negative_D, kInput, GOLDEN_ARGS " --D -3", "--D", "-3", "1..255")
 ERROR_ROW(run_non_numeric_D, kInput, RUN_ON("core") " --D abc", "--D", "abc", "1..255")
 ERROR_ROW(golden_non_numeric_gb, kInput, GOLDEN " --gb 12x", "--gb", "12x", "0..255")
-ERROR_ROW(run_bad_mode, kInput, RUN " --mode triple", "--mode", "triple", "single or bidir")
+ERROR_ROW(run_bad_mode, kInput, RUN " --mode triple", "--mode", "triple", "single, bidir or joint")
 BOOST_AUTO_TEST_SUITE_END()
 
 // ---- machine configuration and memory fit ---------------------------------------------
@@ -465,11 +465,12 @@ ERROR_ROW(run_clock_0, kInput, RUN " --clock-mhz 0", "--clock-mhz", "> 0")
 ERROR_ROW(run_clock_negative, kInput, RUN " --clock-mhz -5", "--clock-mhz", "-5", "> 0")
 ERROR_ROW(exec_clock_0, kInput, EXEC_L " --clock-mhz 0", "--clock-mhz", "> 0")
 ERROR_ROW(run_mem_bytes_zero, kInput, RUN " --mem-bytes 0", "--mem-bytes", "1..1048576")
-// D = 8 on a 64-wide ROI needs more than 200 bytes per PE (the exact figure is the plan's)
-ERROR_ROW(run_mem_too_small, kInput, RUN " --mem-bytes 200", "does not fit", "needs",
-          "bytes of local memory per PE", "have 200", "mem_bytes")
-ERROR_ROW(run_ext_too_small, kInput, RUN " --ext-bytes 0", "does not fit", "external memory",
-          "ext_bytes")
+// D = 8 on a 64-wide ROI needs more than 100 bytes per PE (the exact figure is the plan's)
+ERROR_ROW(run_mem_too_small, kInput, RUN " --mem-bytes 100", "does not fit", "needs",
+          "bytes of local memory per PE", "have 100", "mem_bytes")
+// D = 64 with 400 bytes per PE spills pointer columns to the external memory
+ERROR_ROW(run_ext_too_small, kInput, RUN_ON("core") " --mem-bytes 400 --ext-bytes 0",
+          "does not fit", "external memory", "ext_bytes")
 ERROR_ROW(run_set_unknown, kInput, RUN " --set nosuch=3", "nosuch")
 ERROR_ROW(run_set_malformed, kInput, RUN " --set ring_hop", "--set", "NAME=VALUE")
 ERROR_ROW(run_watchdog_zero, kInput, RUN " --set watchdog_cycles=0", "watchdog_cycles", "1..")

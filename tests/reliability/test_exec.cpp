@@ -157,3 +157,57 @@ BOOST_AUTO_TEST_CASE(param_words_are_32_bit) {
     BOOST_TEST(j.at("cp").at(1).get<uint64_t>() == 4294967295u);  // -1 as a 32-bit word
     BOOST_TEST(j.at("cp").at(2).get<uint64_t>() == 4000000000u);
 }
+
+// Issue 13 item 8: exec writes waves (--vcd, as run) and prints the PE
+// registers, flags and local memory at the end (--dump-pes / --dump-mem),
+// also in the report. Expected values come from the program text.
+BOOST_AUTO_TEST_CASE(waves_and_pe_dump) {
+    const Dir d;
+    // PE p: r1 = p + 3, r2 = 2 (p + 3), mem[0x10] = r2, mem[0x11] = 0x5a.
+    write_file(d / "pes.s",
+               ".phase work\n"
+               "        pidx r1, #0\n"
+               "        addi r1, r1, #3\n"
+               "        add r2, r1, r1\n"
+               "        st r2, [#0x10]\n"
+               "        li r3, #0x5a\n"
+               "        st r3, [#0x11]\n"
+               "        halt\n");
+    for (const char* model : {"core", "tlm"}) {
+        BOOST_TEST_CONTEXT(model) {
+            const std::string vcd = d / (std::string(model) + ".vcd");
+            const std::string rep = d / (std::string(model) + ".json");
+            const clitest::Result r = clitest::run(
+                "exec " + (d / "pes.s") + " --model " + model + " --pes 8 --vcd " + vcd +
+                " --trace-pes 0:1 --dump-pes 2,5 --dump-mem 0x10:0x11" + " --report " + rep);
+            BOOST_TEST_INFO(r.out);
+            BOOST_REQUIRE(r.code == 0);
+            BOOST_TEST(r.out.find("waves -> " + vcd) != std::string::npos);
+            BOOST_TEST(fs::is_regular_file(vcd));
+            BOOST_TEST(fs::is_regular_file(d / (std::string(model) + ".gtkw")));
+            BOOST_TEST(r.out.find("    pe 2: 00 05 0a 5a") != std::string::npos);
+            BOOST_TEST(r.out.find("    pe 5: 00 08 10 5a") != std::string::npos);
+            BOOST_TEST(r.out.find("    pe 5 @0x0010: 10 5a") != std::string::npos);
+            const json j = read_json(rep);
+            BOOST_REQUIRE(j.at("pes").size() == 2u);
+            BOOST_TEST(j["pes"][1]["pe"] == 5);
+            BOOST_TEST(j["pes"][1]["regs"][1] == 8);
+            BOOST_TEST(j["pes"][1]["regs"][2] == 16);
+            BOOST_TEST(j["pes"][1]["mem"]["first"] == 16);
+            BOOST_TEST(j["pes"][1]["mem"]["bytes"][0] == 16);
+            BOOST_TEST(j["pes"][1]["mem"]["bytes"][1] == 0x5a);
+            BOOST_TEST(j["pes"][1]["M"] == 1);
+            BOOST_TEST(j.at("params").at("machine").at("pes") == 8);
+        }
+    }
+    // Bad selections are refused before the run.
+    const std::string src = d / "pes.s";
+    for (const char* bad : {"--dump-pes 8 --pes 8", "--dump-pes 3:1", "--dump-mem 0:3",
+                            "--dump-pes 0 --dump-mem 0:1024", "--dump-pes 0 --dump-mem 5:2"}) {
+        const clitest::Result r = clitest::run("exec " + src + " " + bad);
+        BOOST_TEST_CONTEXT(bad << "\n" << r.out) {
+            BOOST_TEST(r.code == 2);
+            BOOST_TEST(r.out.find("halted") == std::string::npos);
+        }
+    }
+}

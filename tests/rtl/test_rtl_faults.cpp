@@ -82,7 +82,9 @@ void same_fault(const std::string& src, isa::MachineConfig cfg = rtl_config(8)) 
 }
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(broadcast_address) { same_fault("cli c1, #1000\n ld r1, [c1 + 30]\n halt\n"); }
+BOOST_AUTO_TEST_CASE(broadcast_address) {
+    same_fault("cli c1, #1000\n ld r1, [c1 + 30]\n halt\n");
+}
 BOOST_AUTO_TEST_CASE(per_pe_address) {
     same_fault("pidx r1, #0\n shli r1, r1, #7\n ldx r2, [r1 + 900]\n halt\n");
 }
@@ -90,15 +92,21 @@ BOOST_AUTO_TEST_CASE(mask_stack) {
     same_fault("mif\nmif\nmif\nmif\nmif\nmif\nmif\nmif\nmif\nhalt\n");
     same_fault("mend\nhalt\n");
 }
-BOOST_AUTO_TEST_CASE(return_stack) { same_fault("ret\nhalt\n"); }
-BOOST_AUTO_TEST_CASE(param_block) { same_fault("cli c2, #200\n cld c1, [c2 + 56]\n halt\n"); }
+BOOST_AUTO_TEST_CASE(return_stack) {
+    same_fault("ret\nhalt\n");
+}
+BOOST_AUTO_TEST_CASE(param_block) {
+    same_fault("cli c2, #200\n cld c1, [c2 + 56]\n halt\n");
+}
 BOOST_AUTO_TEST_CASE(transfers) {
     same_fault("cli c1, #-1\n cli c2, #0\n xld [#0], ext[c2], c1\n halt\n");
     same_fault("cli c1, #30\n cli c2, #0\n xst [#1000], ext[c2], c1\n halt\n");
     same_fault("cli c1, #30\n cli c2, #65530\n xld [#0], ext[c2], c1\n halt\n");
     same_fault("cli c1, #30\n cli c2, #65530\n xld [#1000], ext[c2], c1\n halt\n");
 }
-BOOST_AUTO_TEST_CASE(video_port_missing) { same_fault("cli c1, #0\n vin #0, [#0], c1, c1\n halt\n"); }
+BOOST_AUTO_TEST_CASE(video_port_missing) {
+    same_fault("cli c1, #0\n vin #0, [#0], c1, c1\n halt\n");
+}
 BOOST_AUTO_TEST_CASE(watchdog) {
     isa::MachineConfig cfg = rtl_config(8);
     cfg.watchdog_cycles = 500;
@@ -106,4 +114,15 @@ BOOST_AUTO_TEST_CASE(watchdog) {
     const auto [c, r] = both("lp: add r1, r1, r2\n jmp lp\n", cfg);
     BOOST_CHECK(r.what.find("watchdog_cycles = 500") != std::string::npos);
 }
-BOOST_AUTO_TEST_CASE(pc_past_the_end) { same_fault("nop\nnop\n"); }
+// The boundary: an instruction that starts at cycle watchdog_cycles faults
+// (the run would be longer). The loop's instructions start at 3k (add) and
+// 3k + 1 (jmp): 499 = 3 * 166 + 1 is a start, so an RTL that fired only
+// after the limit (mcycle > watchdog_cycles) would fault at 501 instead.
+BOOST_AUTO_TEST_CASE(watchdog_boundary) {
+    isa::MachineConfig cfg = rtl_config(8);
+    cfg.watchdog_cycles = 499;
+    same_fault("lp: add r1, r1, r2\n jmp lp\n", cfg);
+}
+BOOST_AUTO_TEST_CASE(pc_past_the_end) {
+    same_fault("nop\nnop\n");
+}

@@ -1,7 +1,8 @@
 // The mutation check: the mutation-check model (8 PEs) with one planted bug
-// (RTL_TEST_MUTANT; imap::rtl::mutants() lists them) runs the random suite
-// until the lockstep comparison catches it. "none" runs the same model with
-// no bug selected and must pass.
+// (the first argument after "--": test_rtl_mutant -- adc_carry;
+// imap::rtl::mutants() lists them) runs the random suite until the lockstep
+// comparison catches it. "none" runs the same model with no bug selected and
+// must pass. One executable, one CTest test per bug (tests/rtl/CMakeLists.txt).
 #define BOOST_TEST_MODULE rtl_mutant
 #include <boost/test/unit_test.hpp>
 
@@ -11,7 +12,9 @@
 using namespace rtltest;
 
 BOOST_AUTO_TEST_CASE(planted_bug_is_caught) {
-    const std::string name = RTL_TEST_MUTANT;
+    const auto& ts = boost::unit_test::framework::master_test_suite();
+    BOOST_REQUIRE_MESSAGE(ts.argc == 2, "usage: test_rtl_mutant -- <planted bug name or none>");
+    const std::string name = ts.argv[1];
     rtl::SuiteOptions o;
     o.seed = 1000;  // the random suite's programs
     o.mutant = name;
@@ -25,9 +28,9 @@ BOOST_AUTO_TEST_CASE(planted_bug_is_caught) {
     }
     BOOST_REQUIRE_MESSAGE(r.caught, "planted bug " << name << " was not caught by " << r.programs
                                                    << " random programs");
-    std::printf("mutant %s: caught in program %d at instruction %llu, after %llu instructions "
-                "in all\n  %s\n",
-                name.c_str(), r.caught_program,
-                static_cast<unsigned long long>(r.caught_instruction),
-                static_cast<unsigned long long>(r.instructions_to_catch), r.caught_message.c_str());
+    std::printf(
+        "mutant %s: caught in program %d at instruction %llu, after %llu instructions "
+        "in all\n  %s\n",
+        name.c_str(), r.caught_program, static_cast<unsigned long long>(r.caught_instruction),
+        static_cast<unsigned long long>(r.instructions_to_catch), r.caught_message.c_str());
 }

@@ -62,7 +62,8 @@ BOOST_AUTO_TEST_CASE(vcd_and_fst_of_the_design) {
     BOOST_CHECK(va == slurp(b));  // identical runs, identical files
     BOOST_CHECK(va.find("$timescale") != std::string::npos);
     BOOST_CHECK(va.find("$scope module u_cp $end") != std::string::npos);
-    BOOST_CHECK(va.find("$scope module cw $end") != std::string::npos);  // the control word
+    // the control word (Verilator 5.006 writes a packed struct as a scope of kind struct)
+    BOOST_CHECK(va.find("$scope struct cw $end") != std::string::npos);
     BOOST_CHECK(va.find(" mcycle ") != std::string::npos);
     BOOST_CHECK(va.find(" clk ") != std::string::npos);
     BOOST_CHECK(va.find("$scope module g_pe[1] $end") != std::string::npos);
@@ -72,8 +73,7 @@ BOOST_AUTO_TEST_CASE(vcd_and_fst_of_the_design) {
     const std::string gtkw = slurp(d / "a.gtkw");
     BOOST_CHECK(gtkw.find("[dumpfile] \"a.vcd\"") != std::string::npos);
     BOOST_CHECK(gtkw.find("dut.imap_top.u_cp.mcycle[63:0]") != std::string::npos);
-    BOOST_CHECK(gtkw.find("dut.imap_top.u_array.g_pe[1].u_pe.regs[0][7:0]") !=
-                std::string::npos);
+    BOOST_CHECK(gtkw.find("dut.imap_top.u_array.g_pe[1].u_pe.regs[0][7:0]") != std::string::npos);
     // a window of machine cycles: a smaller file
     const std::string w = (d / "w.vcd").string();
     BOOST_REQUIRE_EQUAL(traced_run(w, {1}, 20, 30), 0);

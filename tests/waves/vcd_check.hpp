@@ -27,6 +27,8 @@ struct Parsed {
     std::vector<uint64_t> times;
     size_t changes = 0;
     std::map<std::string, size_t> changes_by_name;
+    // (time, value) of every change of each wire of at most 64 bits.
+    std::map<std::string, std::vector<std::pair<uint64_t, uint64_t>>> history;
 };
 
 inline std::string read_all(const std::string& path) {
@@ -138,6 +140,8 @@ inline Parsed parse(const std::string& text) {
         if (v->second.width == 1 && line[0] == 'b') fail("vector change of a 1-bit wire: " + line);
         ++p.changes;
         ++p.changes_by_name[v->second.full];
+        if (value.size() <= 64 && !p.times.empty())
+            p.history[v->second.full].emplace_back(p.times.back(), std::stoull(value, nullptr, 2));
     }
     if (in_comment) fail("unterminated $comment");
     return p;
@@ -145,11 +149,47 @@ inline Parsed parse(const std::string& text) {
 
 // Signal names referenced by a .gtkw file (lines that are not options,
 // flags, comments or group rows).
+// A combined vector of a .gtkw ("#{name} (bit)parent ..."): its name and
+// its bits, most significant first.
+struct GtkwVector {
+    std::string name;
+    std::vector<std::pair<int, std::string>> bits;
+};
+inline std::vector<GtkwVector> gtkw_vectors(const std::string& text) {
+    std::vector<GtkwVector> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("#{", 0) != 0) continue;
+        const size_t close = line.find('}');
+        GtkwVector v;
+        v.name = line.substr(2, close - 2);
+        std::istringstream rest(line.substr(close + 1));
+        std::string tok;
+        while (rest >> tok) {
+            const size_t rp = tok.find(')');
+            if (tok.empty() || tok[0] != '(' || rp == std::string::npos) {
+                v.bits.emplace_back(-1, tok);  // malformed: the test sees -1
+                continue;
+            }
+            v.bits.emplace_back(std::stoi(tok.substr(1, rp - 1)), tok.substr(rp + 1));
+        }
+        out.push_back(v);
+    }
+    return out;
+}
+
+// The signals a .gtkw names (a combined vector's parents for "#{...}" lines).
 inline std::vector<std::string> gtkw_signals(const std::string& text) {
     std::vector<std::string> out;
     std::istringstream in(text);
     std::string line;
     while (std::getline(in, line)) {
+        if (line.rfind("#{", 0) == 0) {
+            for (const GtkwVector& v : gtkw_vectors(line + "\n"))
+                for (const auto& b : v.bits) out.push_back(b.second);
+            continue;
+        }
         if (line.empty() || line[0] == '[' || line[0] == '@' || line[0] == '*' || line[0] == '-')
             continue;
         if (line[0] == '+') {

@@ -42,6 +42,14 @@ bool plain(::tlm::tlm_generic_payload& tr, bool dbg) {
     return true;
 }
 
+// The external memory for a lookup, without telling the machine that the
+// host writes it: the targets do that (Machine::ext_data(), after which
+// the machine clears all of it on reset) only for a write into it or a DMI
+// pointer to it, so reads and local-memory traffic keep the cheap reset.
+uint8_t* ext_view(isa::Machine& m) {
+    return const_cast<uint8_t*>(static_cast<const isa::Machine&>(m).ext_data());
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -58,13 +66,14 @@ unsigned Pe::access(::tlm::tlm_generic_payload& tr) {
     const size_t P = static_cast<size_t>(m_.pes());
     const isa::MachineConfig& c = m_.config();
     const Region regions[2] = {{m_.mem_data(), 0, c.mem_bytes},
-                               {m_.ext_data(), kPeExtBase, c.ext_bytes}};
+                               {ext_view(m_), kPeExtBase, c.ext_bytes}};
     const uint64_t len = tr.get_data_length();
     const Region* r = nullptr;
     if (!find(regions, 2, tr.get_address(), len, &r)) {
         tr.set_response_status(::tlm::TLM_ADDRESS_ERROR_RESPONSE);
         return 0;
     }
+    if (r == &regions[1] && tr.is_write()) m_.ext_data();
     // PE `index` owns every P-th byte of the address-major block.
     uint8_t* cell = r->data + (tr.get_address() - r->base) * P + static_cast<size_t>(index_);
     uint8_t* data = tr.get_data_ptr();
@@ -112,13 +121,14 @@ unsigned ArrayMem::access(::tlm::tlm_generic_payload& tr) {
     const uint64_t P = static_cast<uint64_t>(m_.pes());
     const isa::MachineConfig& c = m_.config();
     const Region regions[2] = {{m_.mem_data(), 0, uint64_t{c.mem_bytes} * P},
-                               {m_.ext_data(), kArrayExtBase, uint64_t{c.ext_bytes} * P}};
+                               {ext_view(m_), kArrayExtBase, uint64_t{c.ext_bytes} * P}};
     const uint64_t len = tr.get_data_length();
     const Region* r = nullptr;
     if (!find(regions, 2, tr.get_address(), len, &r)) {
         tr.set_response_status(::tlm::TLM_ADDRESS_ERROR_RESPONSE);
         return 0;
     }
+    if (r == &regions[1] && tr.is_write()) m_.ext_data();
     uint8_t* p = r->data + (tr.get_address() - r->base);
     if (tr.is_read())
         std::memcpy(tr.get_data_ptr(), p, len);
@@ -144,12 +154,15 @@ bool ArrayMem::get_direct_mem_ptr(int, ::tlm::tlm_generic_payload& tr, ::tlm::tl
     const uint64_t P = static_cast<uint64_t>(m_.pes());
     const isa::MachineConfig& c = m_.config();
     const Region regions[2] = {{m_.mem_data(), 0, uint64_t{c.mem_bytes} * P},
-                               {m_.ext_data(), kArrayExtBase, uint64_t{c.ext_bytes} * P}};
+                               {ext_view(m_), kArrayExtBase, uint64_t{c.ext_bytes} * P}};
     const Region* r = nullptr;
     if (!find(regions, 2, tr.get_address(), 1, &r)) {
         dmi.allow_none();
         return false;
     }
+    // A writable pointer into the external memory: the machine then clears
+    // all of it on reset (Machine::ext_data).
+    if (r == &regions[1]) m_.ext_data();
     dmi.set_dmi_ptr(r->data);
     dmi.set_start_address(r->base);
     dmi.set_end_address(r->base + r->size - 1);

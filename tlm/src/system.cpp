@@ -46,7 +46,7 @@ TlmRunResult TlmSystem::result() const {
     TlmRunResult r;
     r.halted = m.halted();
     r.cycles = m.cycles();
-    r.modeled_ms = m.config().seconds(m.cycles()) * 1e3;
+    r.modeled_ms = m.config().milliseconds(m.cycles());
     r.phase_cycles = m.phase_cycles();
     r.stats = m.stats();
     r.ring = ring.stats();

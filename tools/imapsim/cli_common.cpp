@@ -120,44 +120,144 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+std::string folder_of(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    return parent.empty() ? std::string(".") : parent.string();
+}
+
+bool file_in_folder(const std::string& path, const std::string& dir) {
+    namespace fs = std::filesystem;
+    if (path.empty() || dir.empty()) return false;
+    const auto norm = [](const fs::path& q) { return (fs::absolute(q) / "").lexically_normal(); };
+    return norm(folder_of(path)) == norm(dir);
+}
+
+nlohmann::json param_value_json(const imap::isa::ParamInfo& p) {
+    const std::string& v = p.value;
+    if (v == "on" || v == "true") return true;
+    if (v == "off" || v == "false") return false;
+    if (!v.empty()) {
+        errno = 0;
+        char* end = nullptr;
+        const long long i = std::strtoll(v.c_str(), &end, 10);
+        if (errno == 0 && end != v.c_str() && *end == '\0') return i;
+        errno = 0;
+        const unsigned long long u = std::strtoull(v.c_str(), &end, 10);
+        if (errno == 0 && end != v.c_str() && *end == '\0' && v[0] != '-') return u;
+        errno = 0;
+        const double d = std::strtod(v.c_str(), &end);
+        if (errno == 0 && end != v.c_str() && *end == '\0' && std::isfinite(d)) return d;
+    }
+    return v;  // not a number: kept as text
+}
+
+nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const imap::isa::ParamInfo& p : cfg.list()) j[p.name] = param_value_json(p);
+    return j;
+}
+
+nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const imap::isa::ParamInfo& p : cfg.list())
+        j[p.name] = {{"assumption", p.assumption},
+                     {"faster", p.faster},
+                     {"unit", p.unit},
+                     {"group", p.group}};
+    return j;
+}
+
+std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg) {
+    std::string s;
+    for (const imap::isa::ParamInfo& p : cfg.list()) {
+        if (!p.faster) continue;
+        if (!s.empty()) s += ", ";
+        s += p.name + " " + p.value + (p.unit.empty() ? "" : " " + p.unit);
+    }
+    return s;
+}
+
 nlohmann::json algo_params_json(const g::Params& p) {
-    return {{"D", p.D},
-            {"km", p.km},
-            {"kb", p.kb},
-            {"gb", p.gb},
-            {"Wo", p.Wo},
-            {"Wd", p.Wd},
-            {"mode", g::to_string(p.mode)},
-            {"seed_col", g::seed_col_string(p.seed_col)},
-            {"seed_disp", g::seed_disp_string(p.seed_disp)},
-            {"vote", p.vote},
-            {"frame", g::to_string(p.frame)}};
+    nlohmann::json j = {{"D", p.D},
+                        {"km", p.km},
+                        {"kb", p.kb},
+                        {"gb", p.gb},
+                        {"Wo", p.Wo},
+                        {"Wd", p.Wd},
+                        {"mode", g::to_string(p.mode)},
+                        {"seed_col", g::seed_col_string(p.seed_col)},
+                        {"seed_disp", g::seed_disp_string(p.seed_disp)},
+                        {"vote", p.vote},
+                        {"frame", g::to_string(p.frame)}};
+    if (g::uses_options(p)) {  // SPEC A.9 (absent for the paper's algorithm)
+        j["dissim"] = g::to_string(p.dissim);
+        j["ad_max"] = p.ad_max;
+        j["kc"] = p.kc;
+        j["census"] = p.census;
+        j["agg_rx"] = p.agg_rx;
+        j["agg_ry"] = p.agg_ry;
+    }
+    return j;
 }
 
 void add_algo_flags(CLI::App* app, AlgoFlags& f) {
     const g::Params d;
+    const g::Params q = g::preset("quality");
+    AlgoFlags* fp = &f;
     auto opt = [&](const char* name, std::string& dst, const std::string& help,
-                   const std::string& def) {
-        app->add_option(name, dst, help + " [default: " + def + "]")->group("Algorithm (SPEC A.1)");
+                   const std::string& def, const char* group = "Algorithm (SPEC A.1)") {
+        const std::string flag = name;
+        app->add_option(name, dst, help + " [default: " + def + "]")
+            ->group(group)
+            ->each([fp, flag](const std::string&) { fp->given.insert(flag); });
     };
+    opt("--preset", f.preset,
+        "starting values of all algorithm flags: paper (SPEC A.1-A.7) or quality (SPEC A.9 "
+        "options, docs/golden.md); flags given override them",
+        "paper");
     opt("--D", f.D, "disparity levels 0..D-1 (1..min(ROI width, 255))", std::to_string(d.D));
     opt("--km", f.km, "match weight on |R - L| (0..1000000)", std::to_string(d.km));
     opt("--kb", f.kb, "match weight on gb - min(R, L) (0..1000000)", std::to_string(d.kb));
     opt("--gb", f.gb, "intensity upper bound (0..255)", std::to_string(d.gb));
     opt("--Wo", f.Wo, "occlusion cost (Wd..1000000)", std::to_string(d.Wo));
     opt("--Wd", f.Wd, "discontinuity cost (0..Wo)", std::to_string(d.Wd));
-    opt("--mode", f.mode, "single (one wavefront per line) or bidir (two)", "bidir");
-    opt("--seed-col", f.seed_col, "bidir seed column: balanced, center or 1..N-1", "balanced");
-    opt("--seed-disp", f.seed_disp, "bidir seed disparity: free or 0..D-1 (s + ds < N)", "free");
+    opt("--mode", f.mode,
+        "single (one wavefront per line), bidir (two) or joint (two, meeting exactly; SPEC A.9)",
+        "bidir");
+    opt("--seed-col", f.seed_col, "bidir/joint seed column: balanced, center or 1..N-1",
+        "balanced");
+    opt("--seed-disp", f.seed_disp, "bidir/joint seed disparity: free or 0..D-1 (s + ds < N)",
+        "free");
     opt("--vote", f.vote, "inter-scanline majority vote: on or off", "on");
     opt("--roi", f.roi, "region of interest x0,y0,w,h", "whole image");
     opt("--frame", f.frame, "output frame: cyc (cyclopean), left or right", "cyc");
     app->add_flag("--fill", f.fill, "replace occluded pixels (255) by the background fill")
         ->group("Algorithm (SPEC A.1)");
+    const char* a9 = "Quality options (SPEC A.9, docs/golden.md)";
+    const std::string qd = " (quality: ";
+    opt("--dissim", f.dissim,
+        "pixel dissimilarity of the km term: ad (|R - L|) or bt (Birchfield-Tomasi)",
+        std::string(g::to_string(d.dissim)) + qd + g::to_string(q.dissim) + ")", a9);
+    opt("--ad-max", f.ad_max, "truncation of the km term's dissimilarity (0..255; 255 = none)",
+        std::to_string(d.ad_max) + qd + std::to_string(q.ad_max) + ")", a9);
+    opt("--kc", f.kc, "match weight on the census Hamming distance (0..1000000; 0 = off)",
+        std::to_string(d.kc) + qd + std::to_string(q.kc) + ")", a9);
+    opt("--census", f.census, "census neighbour distance: 1 (3x3) or 2 (5x5)",
+        std::to_string(d.census) + qd + std::to_string(q.census) + ")", a9);
+    opt("--agg-rx", f.agg_rx, "match cost summed over sites i-rx..i+rx (0..7)",
+        std::to_string(d.agg_rx) + qd + std::to_string(q.agg_rx) + ")", a9);
+    opt("--agg-ry", f.agg_ry, "... and over ROI lines y-ry..y+ry (0..7)",
+        std::to_string(d.agg_ry) + qd + std::to_string(q.agg_ry) + ")", a9);
 }
 
 g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
     g::Params p;
+    if (!f.preset.empty()) {
+        if (f.preset != "paper" && f.preset != "quality")
+            throw UserError("invalid value '" + f.preset + "' for --preset: expected " +
+                            g::preset_names());
+        p = g::preset(f.preset);
+    }
     auto num = [](const std::string& flag, const std::string& text, long long lo, long long hi,
                   int& dst) {
         if (!text.empty()) dst = static_cast<int>(parse_int_flag(flag, text, lo, hi));
@@ -168,15 +268,37 @@ g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
     num("--gb", f.gb, 0, 255, p.gb);
     num("--Wo", f.Wo, 0, g::kMaxWeight, p.Wo);
     num("--Wd", f.Wd, 0, g::kMaxWeight, p.Wd);
+    num("--ad-max", f.ad_max, 0, 255, p.ad_max);
+    num("--kc", f.kc, 0, g::kMaxWeight, p.kc);
+    num("--census", f.census, 1, g::kMaxCensusRadius, p.census);
+    num("--agg-rx", f.agg_rx, 0, g::kMaxAggRadius, p.agg_rx);
+    num("--agg-ry", f.agg_ry, 0, g::kMaxAggRadius, p.agg_ry);
+    if (f.dissim == "ad")
+        p.dissim = g::Dissim::Ad;
+    else if (f.dissim == "bt")
+        p.dissim = g::Dissim::Bt;
+    else if (!f.dissim.empty())
+        throw UserError("invalid value '" + f.dissim + "' for --dissim: expected ad or bt");
 
-    if (f.mode == "single")
-        p.mode = g::Mode::Single;
-    else if (f.mode == "bidir")
-        p.mode = g::Mode::Bidir;
-    else
-        throw UserError("invalid value '" + f.mode + "' for --mode: expected single or bidir");
+    // Flags with a text default override the preset when given or changed.
+    auto set = [&f](const char* flag, const std::string& value, const char* def) {
+        return f.given.count(flag) > 0 || value != def;
+    };
+    if (set("--mode", f.mode, "bidir")) {
+        if (f.mode == "single")
+            p.mode = g::Mode::Single;
+        else if (f.mode == "bidir")
+            p.mode = g::Mode::Bidir;
+        else if (f.mode == "joint")
+            p.mode = g::Mode::Joint;
+        else
+            throw UserError("invalid value '" + f.mode +
+                            "' for --mode: expected single, bidir or joint");
+    }
 
-    if (f.seed_col == "balanced")
+    if (!set("--seed-col", f.seed_col, "balanced")) {
+        // the preset's
+    } else if (f.seed_col == "balanced")
         p.seed_col.kind = g::SeedColKind::Balanced;
     else if (f.seed_col == "center")
         p.seed_col.kind = g::SeedColKind::Center;
@@ -186,7 +308,9 @@ g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
             "--seed-col (balanced, center or a column)", f.seed_col, 1, g::kMaxWidth - 1));
     }
 
-    if (f.seed_disp == "free") {
+    if (!set("--seed-disp", f.seed_disp, "free")) {
+        // the preset's
+    } else if (f.seed_disp == "free") {
         p.seed_disp.free = true;
     } else {
         p.seed_disp.free = false;
@@ -194,14 +318,18 @@ g::Params parse_algo_flags(const AlgoFlags& f, g::Roi* roi, bool* has_roi) {
             parse_int_flag("--seed-disp (free or a disparity)", f.seed_disp, 0, g::kMaxLevels - 1));
     }
 
-    if (f.vote == "on")
+    if (!set("--vote", f.vote, "on")) {
+        // the preset's
+    } else if (f.vote == "on")
         p.vote = true;
     else if (f.vote == "off")
         p.vote = false;
     else
         throw UserError("invalid value '" + f.vote + "' for --vote: expected on or off");
 
-    if (f.frame == "cyc" || f.frame == "cyclopean")
+    if (!set("--frame", f.frame, "cyc")) {
+        // the preset's
+    } else if (f.frame == "cyc" || f.frame == "cyclopean")
         p.frame = g::Frame::Cyclopean;
     else if (f.frame == "left")
         p.frame = g::Frame::Left;

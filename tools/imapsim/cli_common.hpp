@@ -5,10 +5,12 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 
 #include "imap/golden/params.hpp"
+#include "imap/isa/config.hpp"
 
 namespace imapsim {
 
@@ -36,9 +38,15 @@ class UserError : public std::runtime_error {
 };
 
 // Raw text of the algorithm flags, parsed after CLI11 so that errors name
-// the flag, the value and the allowed range.
+// the flag, the value and the allowed range. `preset` (paper or quality,
+// empty = paper) gives the starting values; every flag given overrides its
+// preset value (an empty string = not given; mode, seed-col, seed-disp,
+// vote and frame count as given when on the command line (`given`) or
+// different from their paper default).
 struct AlgoFlags {
+    std::string preset;
     std::string D, km, kb, gb, Wo, Wd;
+    std::string dissim, ad_max, kc, census, agg_rx, agg_ry;  // SPEC A.9 options
     std::string mode = "bidir";
     std::string seed_col = "balanced";
     std::string seed_disp = "free";
@@ -46,10 +54,12 @@ struct AlgoFlags {
     std::string roi;  // empty = whole image
     std::string frame = "cyc";
     bool fill = false;
+    std::set<std::string> given;  // flags seen on the command line (filled by CLI11)
 };
 
-// Adds --D --km --kb --gb --Wo --Wd --mode --seed-col --seed-disp --vote
-// --roi --frame --fill to a subcommand, with defaults shown in --help.
+// Adds --preset --D --km --kb --gb --Wo --Wd --mode --seed-col --seed-disp
+// --vote --roi --frame --fill and the SPEC A.9 options --dissim --ad-max --kc
+// --census --agg-rx --agg-ry to a subcommand, with defaults shown in --help.
 void add_algo_flags(CLI::App* app, AlgoFlags& f);
 
 // Converts the flags to golden parameters (throws UserError naming the flag).
@@ -58,6 +68,18 @@ imap::golden::Params parse_algo_flags(const AlgoFlags& f, imap::golden::Roi* roi
 
 // The algorithm parameters as a JSON object (reports).
 nlohmann::json algo_params_json(const imap::golden::Params& p);
+
+// One machine parameter's value as JSON: a number (integer or real), or a
+// boolean for an on/off switch (isa::ParamInfo::value is text).
+nlohmann::json param_value_json(const imap::isa::ParamInfo& p);
+// Every machine and cost parameter of `cfg`, name -> value (param_value_json).
+nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg);
+// Per parameter: {"assumption": bool, "faster": bool, "unit", "group"}
+// (docs/isa.md 2.2: an assumption is [A], one that makes the machine faster
+// than the published facts [A+]).
+nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg);
+// The [A+] parameters as "name value unit" items joined by ", ".
+std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg);
 
 // Strict integer parse of a flag value; error names the flag and the range.
 long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
@@ -83,6 +105,13 @@ void create_output_dir(const std::string& flag, const std::string& dir);
 
 // The extension of `path` in lower case, with its dot (".avi"); "" if none.
 std::string lower_extension(const std::string& path);
+
+// The folder a file named `path` goes to: its parent, or "." for a bare
+// file name ("n1.avi"), so that it can be made absolute or compared.
+std::string folder_of(const std::string& path);
+// True when the file `path` lies directly in folder `dir` (both taken
+// relative to the current folder; "n1.json" is in ".", "out/x" in "out/").
+bool file_in_folder(const std::string& path, const std::string& dir);
 
 // Each subcommand registers itself on the app and returns a runner that is
 // called if the subcommand was selected. The runner returns the exit code.

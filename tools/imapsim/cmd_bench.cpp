@@ -1,6 +1,8 @@
 // imapsim bench: simulation speed and firmware quality on the headline case
 // (ROI 128x128, D = 64, bidir, vote on, 256 PEs at 40 MHz), each model run
-// in its own process, medians over --runs.
+// in its own process, medians over --runs: one frame per model (imapsim run)
+// and a headline stream (imapsim stream --synthetic N), whose per-frame log
+// times the TLM model and the golden of the same frames in the same process.
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +15,7 @@
 #include "child.hpp"
 #include "cli_common.hpp"
 #include "imap/golden/stereo.hpp"
+#include "imap/isa/machine.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/synth.hpp"
 #include "model_runner.hpp"
@@ -27,6 +30,7 @@ namespace {
 struct BenchOptions {
     std::string json;
     int runs = 3;
+    int stream_frames = 30;  // 0: no stream case
 };
 
 double median(std::vector<double> x) {
@@ -72,6 +76,64 @@ ModelTimes time_model(const std::string& model, int runs) {
     return t;
 }
 
+// The stream case: per run, the medians over its frames of the model's and
+// the golden's wall time per frame (FrameRecord::model_wall_s /
+// golden_wall_s), and the run's cycles / model seconds.
+struct StreamTimes {
+    bool available = false;
+    int frames = 0;
+    std::vector<double> model_ms, golden_ms, ratio, cycles_per_s;  // one entry per run
+};
+
+StreamTimes time_stream(int frames, int runs) {
+    StreamTimes t;
+    if (frames <= 0) return t;
+    const std::string log = (std::filesystem::temp_directory_path() /
+                             ("imapsim-bench-stream-" + std::to_string(::getpid()) + ".json"))
+                                .string();
+    for (int i = 0; i < runs; ++i) {
+        std::printf("  stream (%d frames) run %d/%d ...\n", frames, i + 1, runs);
+        std::fflush(stdout);
+        const ChildResult c =
+            run_self({"stream", "--synthetic", std::to_string(frames), "--json", log});
+        if (c.exit_code != 0)
+            throw UserError("bench: imapsim stream --synthetic " + std::to_string(frames) +
+                                " failed (exit " + std::to_string(c.exit_code) + "):\n" + c.output,
+                            kExitInternal);
+        std::ifstream in(log);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        std::vector<double> m, g;
+        double cycles = 0, model_s = 0;
+        for (const auto& f : j.at("frames")) {
+            if (f.at("status").get<std::string>() != "ok")
+                throw UserError("bench: stream frame " + std::to_string(f.at("index").get<int>()) +
+                                    " is not bit-exact (" + f.at("status").get<std::string>() + ")",
+                                kExitMismatch);
+            m.push_back(f.at("model_wall_s").get<double>() * 1e3);
+            g.push_back(f.at("golden_wall_s").get<double>() * 1e3);
+            cycles += f.at("cycles").get<double>();
+            model_s += f.at("model_wall_s").get<double>();
+        }
+        t.frames = static_cast<int>(m.size());
+        t.model_ms.push_back(median(m));
+        t.golden_ms.push_back(median(g));
+        t.ratio.push_back(median(m) / median(g));
+        t.cycles_per_s.push_back(model_s > 0 ? cycles / model_s : 0.0);
+    }
+    std::filesystem::remove(log);
+    t.available = true;
+    return t;
+}
+
+// "median (min..max)" of per-run figures.
+std::string spread(const std::vector<double>& v, const char* fmt) {
+    char a[64], b[64], c[64];
+    std::snprintf(a, sizeof a, fmt, median(v));
+    std::snprintf(b, sizeof b, fmt, *std::min_element(v.begin(), v.end()));
+    std::snprintf(c, sizeof c, fmt, *std::max_element(v.begin(), v.end()));
+    return std::string(a) + "  (" + b + " .. " + c + ")";
+}
+
 }  // namespace
 
 Subcommand register_bench(CLI::App& app) {
@@ -84,6 +146,10 @@ Subcommand register_bench(CLI::App& app) {
     sub->add_option("--runs", o->runs, "runs per model (median)")
         ->check(CLI::Range(1, 50))
         ->capture_default_str();
+    sub->add_option("--stream-frames", o->stream_frames,
+                    "frames of the headline stream case (0: leave it out)")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     return {
         sub, [o]() {
             check_output_file("--json", o->json, false);  // before the runs, not after them
@@ -91,12 +157,15 @@ Subcommand register_bench(CLI::App& app) {
                 "imapsim bench: headline case (synthetic scene, ROI 128x128, D=64, "
                 "bidir, vote on, 256 PEs, 40 MHz), %d run(s) per model\n",
                 o->runs);
+            std::printf("  executor SIMD path: %s\n",
+                        imap::isa::to_string(imap::isa::default_simd_path()));
             const ModelTimes tlm = time_model("tlm", o->runs);
             ModelTimes rtl, lock;
             if (model_names().find("rtl") != std::string::npos) {
                 rtl = time_model("rtl", o->runs);
                 lock = time_model("lockstep", o->runs);
             }
+            const StreamTimes st = time_stream(o->stream_frames, o->runs);
 
             // golden, in process, on the same inputs as run's default
             const v::SynthScene sc = v::make_synth_scene(1, 160, 128);
@@ -142,15 +211,34 @@ Subcommand register_bench(CLI::App& app) {
                     "cycles)\n",
                     rtl_cps, static_cast<unsigned long long>(rtl.cycles));
                 std::printf("  TLM/RTL speed           %10.1f\n", tlm_cps / rtl_cps);
-                std::printf("  lockstep cycles/s       %10.3g      (TLM and RTL compared at "
-                            "every instruction)\n",
-                            lock_cps);
+                std::printf(
+                    "  lockstep cycles/s       %10.3g      (TLM and RTL compared at "
+                    "every instruction)\n",
+                    lock_cps);
                 print_rtl_area();
             } else {
                 std::printf("  RTL                     not built in this binary\n");
             }
             std::printf("  golden wall             %10.3f ms   (median)\n", golden_ms);
-            std::printf("  TLM wall / golden wall  %10.2f\n", tlm_wall * 1e3 / golden_ms);
+            std::printf(
+                "  TLM wall / golden wall  %10.2f      (one cold frame against a warm golden)\n",
+                tlm_wall * 1e3 / golden_ms);
+            if (st.available) {
+                std::printf(
+                    "  stream, %d frames, per frame, median over frames; median (min .. max) "
+                    "over %d run(s):\n",
+                    st.frames, o->runs);
+                std::printf("    TLM wall              %s ms\n",
+                            spread(st.model_ms, "%.3f").c_str());
+                std::printf("    golden wall           %s ms\n",
+                            spread(st.golden_ms, "%.3f").c_str());
+                std::printf(
+                    "    TLM wall / golden wall %s   (<= 1: the model keeps up with "
+                    "the golden)\n",
+                    spread(st.ratio, "%.2f").c_str());
+                std::printf("    TLM cycles/s          %s\n",
+                            spread(st.cycles_per_s, "%.3g").c_str());
+            }
 
             if (!o->json.empty()) {
                 nlohmann::json j;
@@ -170,6 +258,17 @@ Subcommand register_bench(CLI::App& app) {
                 j["tlm_over_golden"] = tlm_wall * 1e3 / golden_ms;
                 j["phases"] = tlm.phases;
                 j["runs"] = o->runs;
+                j["simd_path"] = imap::isa::to_string(imap::isa::default_simd_path());
+                if (st.available) {
+                    nlohmann::json s;
+                    s["frames"] = st.frames;
+                    s["tlm_ms_per_frame"] = st.model_ms;
+                    s["golden_ms_per_frame"] = st.golden_ms;
+                    s["tlm_over_golden"] = st.ratio;
+                    s["tlm_cycles_per_s"] = st.cycles_per_s;
+                    s["tlm_over_golden_median"] = median(st.ratio);
+                    j["stream"] = s;
+                }
                 v::write_text_atomic(o->json, j.dump(2) + "\n");
                 std::printf("  -> %s\n", o->json.c_str());
             }

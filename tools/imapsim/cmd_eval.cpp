@@ -3,14 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_common.hpp"
+#include "imap/firmware/plan.hpp"
+#include "imap/firmware/run.hpp"
+#include "imap/golden/estimate.hpp"
 #include "imap/golden/stereo.hpp"
+#include "imap/isa/config.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/matchers.hpp"
 #include "imap/vision/scene.hpp"
 #include "imap/vision/score.hpp"
+#include "imap/vision/synth.hpp"
+#include "plot.hpp"
 
 namespace imapsim {
 
@@ -20,7 +28,8 @@ using nlohmann::json;
 
 namespace {
 struct EvalOptions {
-    std::string scene, all, matcher, json;
+    std::string scene, all, matcher, json, plot, param_sets;
+    bool tradeoff = false;
     double delta = 1.0;
     double gt_scale = 0;
     AlgoFlags algo;
@@ -61,6 +70,294 @@ json matcher_params(const std::string& name, const g::Params& p) {
     return j;
 }
 
+// Modeled cycles of the headline case (synthetic scene seed 1, 160x128, ROI
+// 16,0,128x128, D = 64, the default machine: 256 PEs at 40 MHz) for the
+// paper part of `p`, run by the firmware on the machine core; -1 when the
+// firmware refuses it. The A.9 options come on top as an estimate.
+struct Modeled {
+    int64_t fw_cycles = -1;  // measured: the firmware running paper_part(p)
+    g::OptionCost est;       // estimated: the A.9 options
+    double clock_mhz = 40;
+    bool ok() const { return fw_cycles >= 0; }
+    double fw_ms() const { return static_cast<double>(fw_cycles) / (clock_mhz * 1e3); }
+    double est_ms() const { return static_cast<double>(est.cycles) / (clock_mhz * 1e3); }
+    double total_ms() const { return fw_ms() + est_ms(); }
+};
+
+Modeled modeled_headline(const g::Params& p) {
+    static const v::SynthScene sc = v::make_synth_scene(1, 160, 128);
+    const g::Roi roi{16, 0, 128, 128};
+    const imap::isa::MachineConfig cfg;
+    g::Params q = p;
+    q.D = 64;
+    q.frame = g::Frame::Cyclopean;
+    Modeled m;
+    m.clock_mhz = cfg.clock_mhz;
+    m.est = g::estimate_options(q, roi.w);
+    try {
+        const g::Params pp = g::paper_part(q);
+        const imap::firmware::FramePlan plan = imap::firmware::plan_frame(pp, roi, cfg);
+        const imap::isa::Program prog = imap::firmware::assemble_frame(pp, plan);
+        const imap::firmware::FrameResult r = imap::firmware::run_frame_core(
+            plan, prog, v::view_of(sc.left), v::view_of(sc.right), cfg);
+        m.fw_cycles = static_cast<int64_t>(r.cycles);
+    } catch (const std::exception&) {
+        m.fw_cycles = -1;  // refused (does not fit): shown as "-"
+    }
+    return m;
+}
+
+// imapsim eval --tradeoff: every golden variant and the OpenCV matchers on
+// every scene; one mean row each with the modeled time of the headline case.
+int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int explicit_D) {
+    struct TRow {
+        std::string name, what;
+        bool golden = false;
+        g::Params p;
+        std::vector<v::BadScores> per_scene;
+        v::BadScores mean;
+        double ms = 0;  // matcher wall time, mean over the scenes
+        Modeled model;
+    };
+    std::vector<TRow> rows;
+    for (const auto& var : g::tradeoff_variants()) {
+        TRow r;
+        r.name = var.name;
+        r.what = var.what;
+        r.golden = true;
+        r.p = var.p;
+        rows.push_back(r);
+    }
+    for (const char* name : {"opencv-bm", "opencv-sgbm"}) {
+        TRow r;
+        r.name = name;
+        r.what = "OpenCV reference matcher (docs/scoring.md)";
+        rows.push_back(r);
+    }
+    for (TRow& r : rows) {
+        for (const auto& sc : scenes) {
+            g::Params q = r.golden ? r.p : g::Params{};
+            q.D = explicit_D > 0 ? explicit_D : sc.ndisp;
+            q.frame = g::Frame::Left;
+            double secs = 0;
+            cv::Mat disp;
+            try {
+                disp = v::run_matcher(r.golden ? "golden" : r.name, sc, q, &secs);
+            } catch (const g::ParamError& e) {
+                throw UserError("scene '" + sc.name + "', variant " + r.name + ": " + e.what());
+            }
+            const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
+            r.per_scene.push_back(b);
+            const double n = static_cast<double>(scenes.size());
+            r.mean.nonocc += b.nonocc / n;
+            r.mean.all += b.all / n;
+            r.mean.disc += b.disc / n;
+            r.ms += secs * 1e3 / n;
+        }
+        if (r.golden) r.model = modeled_headline(r.p);
+    }
+
+    char delta_txt[32];
+    std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
+    std::printf(
+        "mean %s %% over %zu scene(s) (nonocc, all, disc; per-scene nonocc) and modeled ms "
+        "of the headline case\n(128x128, D=64, 256 PEs, 40 MHz): fw = the firmware "
+        "running the paper part (measured), +A.9 = ESTIMATE of the options\n\n",
+        delta_txt, scenes.size());
+    std::printf("%-16s %7s %7s %7s", "variant", "nonocc", "all", "disc");
+    for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
+    std::printf(" %8s %8s %9s %8s\n", "fw ms", "+A.9 ms", "total ms", "cpu ms");
+    for (const TRow& r : rows) {
+        std::printf("%-16s %7.2f %7.2f %7.2f", r.name.c_str(), r.mean.nonocc, r.mean.all,
+                    r.mean.disc);
+        for (const auto& b : r.per_scene) std::printf(" %8.2f", b.nonocc);
+        if (!r.golden)
+            std::printf(" %8s %8s %9s", "-", "-", "-");
+        else if (!r.model.ok())
+            std::printf(" %8s %8.2f %9s", "refused", r.model.est_ms(), "-");
+        else
+            std::printf(" %8.2f %8.2f %9.2f", r.model.fw_ms(), r.model.est_ms(),
+                        r.model.total_ms());
+        std::printf(" %8.1f\n", r.ms);
+    }
+    std::printf("\nvariants:\n");
+    for (const TRow& r : rows) {
+        std::printf("  %-16s %s\n", r.name.c_str(), r.what.c_str());
+        for (const auto& item : r.model.est.items)
+            std::printf("  %-16s   est. %s\n", "", item.c_str());
+    }
+
+    if (!o.plot.empty()) {
+        plot::Figure f;
+        f.title =
+            "Mean " + std::string(delta_txt) + " (nonocc) against modeled time, headline case";
+        f.subtitle = "ms = firmware (paper part, measured) + A.9 options (estimate); " +
+                     std::to_string(scenes.size()) + " scene(s)";
+        f.xlabel = "modeled ms per frame (128x128, D=64, 256 PEs, 40 MHz; partly estimated)";
+        f.ylabel = "mean " + std::string(delta_txt) + " % (nonocc)";
+        std::vector<std::pair<double, double>> pts;
+        for (const TRow& r : rows) {
+            if (!r.golden || !r.model.ok()) continue;
+            f.series.push_back({r.name, {r.model.total_ms()}, {r.mean.nonocc}});
+            pts.push_back({r.model.total_ms(), r.mean.nonocc});
+        }
+        // Pareto front: no other point is both faster and better.
+        std::sort(pts.begin(), pts.end());
+        plot::Series front{"Pareto front", {}, {}};
+        double best = 1e300;
+        for (const auto& [x, y] : pts)
+            if (y < best) {
+                best = y;
+                front.x.push_back(x);
+                front.y.push_back(y);
+            }
+        if (front.x.size() > 1) f.series.insert(f.series.begin(), front);
+        for (const TRow& r : rows)
+            if (!r.golden) {
+                char lab[64];
+                std::snprintf(lab, sizeof lab, "%s %.2f%% (not on the machine)", r.name.c_str(),
+                              r.mean.nonocc);
+                f.hlines.push_back({r.mean.nonocc, lab});
+            }
+        f.note = "video rate: 40 ms";
+        f.width = 1000;
+        f.height = 650;
+        v::write_image_atomic(o.plot, plot::render(f));
+    }
+    if (!o.json.empty()) {
+        json arr = json::array();
+        for (const TRow& r : rows) {
+            json j = {{"variant", r.name}, {"what", r.what},      {"nonocc", r.mean.nonocc},
+                      {"all", r.mean.all}, {"disc", r.mean.disc}, {"cpu_ms", r.ms},
+                      {"delta", o.delta}};
+            json per = json::object();
+            for (size_t i = 0; i < scenes.size(); ++i)
+                per[scenes[i].name] = {{"nonocc", r.per_scene[i].nonocc},
+                                       {"all", r.per_scene[i].all},
+                                       {"disc", r.per_scene[i].disc}};
+            j["scenes"] = per;
+            if (r.golden) {
+                json prm = algo_params_json(r.p);
+                prm.erase("D");
+                j["params"] = prm;
+                j["fw_cycles_measured"] = r.model.fw_cycles;
+                j["a9_cycles_estimate"] = r.model.est.cycles;
+                j["a9_local_bytes_estimate"] = r.model.est.local_bytes;
+                j["modeled_ms"] = r.model.ok() ? json(r.model.total_ms()) : json(nullptr);
+            }
+            arr.push_back(j);
+        }
+        v::write_text_atomic(o.json, arr.dump(2) + "\n");
+    }
+    return static_cast<int>(kExitOk);
+}
+
+// One parameter set of --param-sets: the text of its line and its parameters.
+struct ParamSet {
+    std::string text;
+    int line = 0;
+    g::Params p;
+    bool explicit_D = false;
+};
+
+// Reads --param-sets FILE: one set of algorithm flags per line ('#' starts a
+// comment line), each parsed like the command line's; errors name the line.
+std::vector<ParamSet> read_param_sets(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw UserError("--param-sets '" + path + "': cannot read the file");
+    std::vector<ParamSet> sets;
+    std::string text;
+    int line = 0;
+    while (std::getline(in, text)) {
+        ++line;
+        const size_t b = text.find_first_not_of(" \t\r");
+        if (b == std::string::npos || text[b] == '#') continue;
+        std::istringstream is(text);
+        std::vector<std::string> args;
+        for (std::string w; is >> w;) args.push_back(w);
+        std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+        CLI::App parser("param set");
+        AlgoFlags f;
+        add_algo_flags(&parser, f);
+        const std::string where = "--param-sets " + path + ":" + std::to_string(line) + ": ";
+        try {
+            parser.parse(args);
+        } catch (const CLI::ParseError& e) {
+            throw UserError(where + e.what());
+        }
+        if (!f.roi.empty() || f.fill || (f.given.count("--frame") && f.frame != "left"))
+            throw UserError(where + "--roi, --fill and --frame are not accepted here");
+        ParamSet ps;
+        ps.text = text.substr(b);
+        ps.line = line;
+        g::Roi roi;
+        bool has_roi = false;
+        try {
+            ps.p = parse_algo_flags(f, &roi, &has_roi);
+        } catch (const UserError& e) {
+            throw UserError(where + e.what());
+        }
+        ps.explicit_D = !f.D.empty();
+        sets.push_back(ps);
+    }
+    if (sets.empty()) throw UserError("--param-sets '" + path + "': no parameter sets in it");
+    return sets;
+}
+
+// imapsim eval --param-sets: the golden with every set on every scene, one
+// line per set (mean and per-scene nonocc); the scenes are loaded once.
+int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
+                   const std::vector<v::Scene>& scenes) {
+    char delta_txt[32];
+    std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
+    std::printf("%5s %7s %7s %7s", "set", "nonocc", "all", "disc");
+    for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
+    std::printf("  flags (mean %s %%; per-scene nonocc)\n", delta_txt);
+    json arr = json::array();
+    for (const ParamSet& ps : sets) {
+        v::BadScores mean;
+        json per = json::object();
+        std::string cols;
+        for (const auto& sc : scenes) {
+            g::Params q = ps.p;
+            if (!ps.explicit_D) q.D = sc.ndisp;
+            q.frame = g::Frame::Left;
+            double secs = 0;
+            cv::Mat disp;
+            try {
+                disp = v::run_matcher("golden", sc, q, &secs);
+            } catch (const g::ParamError& e) {
+                throw UserError("--param-sets line " + std::to_string(ps.line) + ", scene '" +
+                                sc.name + "': " + e.what());
+            }
+            const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
+            const double n = static_cast<double>(scenes.size());
+            mean.nonocc += b.nonocc / n;
+            mean.all += b.all / n;
+            mean.disc += b.disc / n;
+            per[sc.name] = {{"nonocc", b.nonocc}, {"all", b.all}, {"disc", b.disc}};
+            char c[32];
+            std::snprintf(c, sizeof c, " %8.2f", b.nonocc);
+            cols += c;
+        }
+        std::printf("%5d %7.2f %7.2f %7.2f%s  %s\n", ps.line, mean.nonocc, mean.all, mean.disc,
+                    cols.c_str(), ps.text.c_str());
+        std::fflush(stdout);
+        json prm = algo_params_json(ps.p);
+        if (!ps.explicit_D) prm.erase("D");
+        arr.push_back({{"line", ps.line},
+                       {"flags", ps.text},
+                       {"params", prm},
+                       {"nonocc", mean.nonocc},
+                       {"all", mean.all},
+                       {"disc", mean.disc},
+                       {"delta", o.delta},
+                       {"scenes", per}});
+    }
+    if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
+    return static_cast<int>(kExitOk);
+}
+
 }  // namespace
 
 Subcommand register_eval(CLI::App& app) {
@@ -81,6 +378,17 @@ Subcommand register_eval(CLI::App& app) {
     sub->add_option("--delta", o->delta, "bad-pixel threshold in pixels")->capture_default_str();
     sub->add_option("--gt-scale", o->gt_scale,
                     "ground-truth scale (gt value / scale = disparity) [default: scenes.json]");
+    sub->add_flag("--tradeoff", o->tradeoff,
+                  "score every golden preset and option variant (docs/golden.md, "
+                  "\"Trade-off\") and the OpenCV matchers; one mean row each with the modeled "
+                  "time of the headline case (algorithm flags other than --D are refused)");
+    sub->add_option("--plot", o->plot,
+                    "with --tradeoff: PNG plot of the mean nonocc bad-delta against the modeled "
+                    "time");
+    sub->add_option("--param-sets", o->param_sets,
+                    "score the golden with every parameter set of this file (one line of "
+                    "algorithm flags each, e.g. '--preset quality --kc 3'); the scenes are "
+                    "loaded once (tuning sweeps: scripts/tune-quality.sh)");
     add_algo_flags(sub, o->algo);
     sub->footer(
         "--D defaults to the scene's ndisp (scenes.json). Scenes are scored over the whole "
@@ -106,6 +414,30 @@ Subcommand register_eval(CLI::App& app) {
                 throw UserError("--frame " + o->algo.frame +
                                 " is not supported by eval: scoring uses the left frame");
             const bool explicit_D = !o->algo.D.empty();
+            if (!o->plot.empty() && !o->tradeoff) throw UserError("--plot needs --tradeoff");
+            std::vector<ParamSet> sets;
+            if (!o->param_sets.empty()) {
+                if (o->tradeoff) throw UserError("give --tradeoff or --param-sets, not both");
+                if (!o->matcher.empty() && o->matcher != "golden")
+                    throw UserError("--param-sets scores the golden only: drop --matcher");
+                for (const std::string& f : o->algo.given)
+                    if (f != "--D")
+                        throw UserError(
+                            "--param-sets takes the algorithm flags from its file: drop " + f +
+                            " (only --D, the default of the sets without one, is accepted)");
+                if (o->algo.fill) throw UserError("--param-sets: drop --fill (it is implied)");
+                sets = read_param_sets(o->param_sets);
+            }
+            if (o->tradeoff) {
+                if (!o->matcher.empty())
+                    throw UserError("--tradeoff scores its own list of matchers: drop --matcher");
+                for (const std::string& f : o->algo.given)
+                    if (f != "--D")
+                        throw UserError("--tradeoff uses its own parameter sets: drop " + f +
+                                        " (only --D is accepted)");
+                if (o->algo.fill)
+                    throw UserError("--tradeoff uses its own parameter sets: drop --fill");
+            }
 
             std::vector<std::string> matchers;
             const std::string m =
@@ -116,6 +448,7 @@ Subcommand register_eval(CLI::App& app) {
                 matchers = {m};
 
             check_output_file("--json", o->json, false);  // fail before the work, not after it
+            check_output_file("--plot", o->plot, true);
 
             const std::vector<std::string> dirs =
                 o->all.empty() ? std::vector<std::string>{o->scene} : v::list_scene_dirs(o->all);
@@ -127,14 +460,22 @@ Subcommand register_eval(CLI::App& app) {
             for (const auto& d : dirs)
                 scenes.push_back(v::load_scene(d, o->gt_scale, explicit_D ? p.D : 0));
 
+            if (o->tradeoff) return run_tradeoff(*o, scenes, explicit_D ? p.D : 0);
+            if (!sets.empty()) return run_param_sets(*o, sets, scenes);
+
             int wscene = 5;
             for (const auto& sc : scenes)
                 wscene = std::max(wscene, static_cast<int>(sc.name.size()));
             char delta_txt[32];
             std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o->delta);
-            std::printf("%-*s  %-12s %6s %7s %7s %7s %10s\n", wscene, "scene", "matcher", "D",
+            // The golden row names the preset it started from (golden:quality).
+            auto label = [&](const std::string& name) {
+                return name == "golden" && !o->algo.preset.empty() ? "golden:" + o->algo.preset
+                                                                   : name;
+            };
+            std::printf("%-*s  %-14s %6s %7s %7s %7s %10s\n", wscene, "scene", "matcher", "D",
                         (std::string(delta_txt) + " nonocc").c_str(), "all", "disc", "time ms");
-            const char* fmt = "%-*s  %-12s %6d %*.2f %7.2f %7.2f %10.1f\n";
+            const char* fmt = "%-*s  %-14s %6d %*.2f %7.2f %7.2f %10.1f\n";
             const int wfirst = static_cast<int>(std::string(delta_txt).size()) + 7;
 
             std::vector<Row> rows;
@@ -150,7 +491,7 @@ Subcommand register_eval(CLI::App& app) {
                     } catch (const g::ParamError& e) {
                         throw UserError("scene '" + sc.name + "': " + e.what());
                     }
-                    Row r{sc.name, name, v::score_bad(disp, 1.0, sc, o->delta), secs * 1e3,
+                    Row r{sc.name, label(name), v::score_bad(disp, 1.0, sc, o->delta), secs * 1e3,
                           matcher_params(name, q)};
                     std::printf(fmt, wscene, r.scene.c_str(), r.matcher.c_str(), q.D, wfirst,
                                 r.bad.nonocc, r.bad.all, r.bad.disc, r.ms);
@@ -163,14 +504,15 @@ Subcommand register_eval(CLI::App& app) {
                     v::BadScores mean;
                     double ms = 0;
                     for (const auto& r : rows)
-                        if (r.matcher == name) {
+                        if (r.matcher == label(name)) {
                             mean.nonocc += r.bad.nonocc / scenes.size();
                             mean.all += r.bad.all / scenes.size();
                             mean.disc += r.bad.disc / scenes.size();
                             ms += r.ms / scenes.size();
                         }
-                    std::printf("%-*s  %-12s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
-                                name.c_str(), "", wfirst, mean.nonocc, mean.all, mean.disc, ms);
+                    std::printf("%-*s  %-14s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
+                                label(name).c_str(), "", wfirst, mean.nonocc, mean.all, mean.disc,
+                                ms);
                 }
             }
 

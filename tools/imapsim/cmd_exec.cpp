@@ -1,8 +1,11 @@
 // imapsim exec: runs a user's program (IMAPFW01 file, or assembler source
 // ending in .s / .asm) on a model of the machine, with optional video inputs
 // and an output image on port 0 (docs/exec.md).
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -29,11 +32,115 @@ namespace fw = imap::firmware;
 namespace {
 
 struct ExecOptions {
-    std::string program, left, right, out_left, report;
+    std::string program, left, right, out_left, out_size, report;
+    std::string dump_pes, dump_mem;
     std::string model = kDefaultModel;
     std::vector<std::string> params, defines;
     MachineFlags machine;
+    WaveFlags waves;
 };
+
+// --dump-pes: "a:b" (inclusive) or a list "1,5,9" or both, PEs of 0..P-1.
+std::vector<int> parse_pe_list(const std::string& text, int P) {
+    const std::string want = "PEs as a:b (inclusive) or a list 1,5,9 with PEs in 0.." +
+                             std::to_string(P - 1) + ", at most 64";
+    std::vector<int> pes;
+    size_t at = 0;
+    while (at <= text.size()) {
+        const size_t comma = text.find(',', at);
+        const std::string item =
+            text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+        const size_t colon = item.find(':');
+        long long a = 0, b = 0;
+        try {
+            if (colon == std::string::npos) {
+                a = b = parse_int_flag("--dump-pes", item, 0, P - 1);
+            } else {
+                a = parse_int_flag("--dump-pes", item.substr(0, colon), 0, P - 1);
+                b = parse_int_flag("--dump-pes", item.substr(colon + 1), 0, P - 1);
+            }
+        } catch (const UserError&) {
+            throw UserError("invalid value '" + text + "' for --dump-pes: expected " + want);
+        }
+        if (b < a) throw UserError("invalid value '" + text + "' for --dump-pes: expected " + want);
+        for (long long q = a; q <= b; ++q) pes.push_back(static_cast<int>(q));
+        if (comma == std::string::npos) break;
+        at = comma + 1;
+    }
+    std::sort(pes.begin(), pes.end());
+    pes.erase(std::unique(pes.begin(), pes.end()), pes.end());
+    if (pes.size() > 64)
+        throw UserError("invalid value '" + text + "' for --dump-pes: expected " + want);
+    return pes;
+}
+
+// --dump-mem A:B: local addresses A..B (inclusive), decimal or 0x hex.
+std::pair<uint32_t, uint32_t> parse_mem_range(const std::string& text, uint32_t mem_bytes) {
+    const std::string want = "A:B, local addresses (decimal or 0x hex) with A <= B in 0.." +
+                             std::to_string(mem_bytes - 1) + ", at most 4096 bytes";
+    const size_t colon = text.find(':');
+    auto num = [&](const std::string& t) -> long long {
+        errno = 0;
+        char* end = nullptr;
+        const long long v = std::strtoll(t.c_str(), &end, 0);
+        if (t.empty() || errno != 0 || *end != '\0' || v < 0 ||
+            v >= static_cast<long long>(mem_bytes))
+            throw UserError("invalid value '" + text + "' for --dump-mem: expected " + want);
+        return v;
+    };
+    if (colon == std::string::npos)
+        throw UserError("invalid value '" + text + "' for --dump-mem: expected " + want);
+    const long long a = num(text.substr(0, colon)), b = num(text.substr(colon + 1));
+    if (b < a || b - a >= 4096)
+        throw UserError("invalid value '" + text + "' for --dump-mem: expected " + want);
+    return {static_cast<uint32_t>(a), static_cast<uint32_t>(b)};
+}
+
+// The registers, flags and (with a range) local memory of the chosen PEs,
+// printed and as JSON for the report.
+nlohmann::json dump_state(const isa::Machine& m, const std::vector<int>& pes, bool mem,
+                          std::pair<uint32_t, uint32_t> range) {
+    nlohmann::json out = nlohmann::json::array();
+    if (pes.empty()) return out;
+    const int nregs = m.config().pe_regs;
+    std::printf("  PE state at the end (registers hex r0..r%d, flags C T M):\n", nregs - 1);
+    for (const int pe : pes) {
+        std::string line;
+        nlohmann::json regs = nlohmann::json::array();
+        char b[8];
+        for (int r = 0; r < nregs; ++r) {
+            const uint8_t v = m.reg_lanes(r)[pe];
+            std::snprintf(b, sizeof b, "%s%02x", r == 0 ? "" : " ", v);
+            line += b;
+            regs.push_back(v);
+        }
+        const int c = m.carry_lanes()[pe], t = m.test_lanes()[pe], mk = m.mask_lanes()[pe];
+        std::printf("    pe %d: %s  C=%d T=%d M=%d\n", pe, line.c_str(), c, t, mk);
+        nlohmann::json j = {{"pe", pe}, {"regs", regs}, {"C", c}, {"T", t}, {"M", mk}};
+        if (mem) {
+            nlohmann::json bytes = nlohmann::json::array();
+            for (uint32_t a = range.first; a <= range.second; ++a)
+                bytes.push_back(m.mem_read(pe, a));
+            j["mem"] = {{"first", range.first}, {"bytes", bytes}};
+        }
+        out.push_back(j);
+    }
+    if (mem) {
+        std::printf("  PE local memory [0x%x..0x%x] (hex, 16 bytes a row):\n", range.first,
+                    range.second);
+        for (const int pe : pes)
+            for (uint32_t a = range.first; a <= range.second; a += 16) {
+                std::string line;
+                char b[8];
+                for (uint32_t k = a; k <= range.second && k < a + 16; ++k) {
+                    std::snprintf(b, sizeof b, " %02x", m.mem_read(pe, k));
+                    line += b;
+                }
+                std::printf("    pe %d @0x%04x:%s\n", pe, a, line.c_str());
+            }
+    }
+    return out;
+}
 
 // What a run of the program produced, whatever the model.
 struct ExecResult {
@@ -42,7 +149,8 @@ struct ExecResult {
     std::vector<uint64_t> phase_cycles;
     isa::Stats stats;
     std::array<uint32_t, isa::kCpRegs> cp{};
-    isa::ImageVideoPort::Image out;  // output port 0
+    isa::ImageVideoPort::Image out;             // output port 0
+    std::shared_ptr<const isa::Machine> final;  // --model tlm: the state at the end
 };
 
 bool is_source(const std::string& path) {
@@ -107,7 +215,7 @@ ExecResult run_core(isa::Machine& m, const std::vector<std::pair<int, uint32_t>>
     ExecResult r;
     r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.cycles = m.cycles();
-    r.modeled_ms = cfg.seconds(r.cycles) * 1e3;
+    r.modeled_ms = cfg.milliseconds(r.cycles);
     r.phase_cycles = m.phase_cycles();
     r.stats = m.stats();
     for (int i = 0; i < isa::kCpRegs; ++i) r.cp[static_cast<size_t>(i)] = m.cp(i);
@@ -119,10 +227,13 @@ ExecResult run_core(isa::Machine& m, const std::vector<std::pair<int, uint32_t>>
 ExecResult run_tlm_model(const isa::MachineConfig& cfg, const isa::Program& prog,
                          const std::vector<std::pair<int, uint32_t>>& params,
                          const isa::ImageVideoPort::Image& left,
-                         const isa::ImageVideoPort::Image& right, int out_w, int out_h) {
+                         const isa::ImageVideoPort::Image& right, int out_w, int out_h,
+                         isa::Observer* observer) {
     imap::tlm::OutputImages out;
+    imap::tlm::TlmConfig tcfg;
+    tcfg.observer = observer;
     const imap::tlm::TlmRunResult tr =
-        imap::tlm::run_tlm(cfg, prog, params, left, right, out_w, out_h, &out);
+        imap::tlm::run_tlm(cfg, prog, params, left, right, out_w, out_h, &out, tcfg);
     ExecResult r;
     r.cycles = tr.cycles;
     r.modeled_ms = tr.modeled_ms;
@@ -132,6 +243,7 @@ ExecResult run_tlm_model(const isa::MachineConfig& cfg, const isa::Program& prog
     if (tr.machine)
         for (int i = 0; i < isa::kCpRegs; ++i) r.cp[static_cast<size_t>(i)] = tr.machine->cp(i);
     r.out = out.image[0];
+    r.final = tr.machine;
     return r;
 }
 #endif
@@ -167,8 +279,16 @@ Subcommand register_exec(CLI::App& app) {
         ->allow_extra_args(false);
     sub->add_option("--out-left", o->out_left,
                     "write video output port 0 (the size of the input images) here");
+    sub->add_option("--out-size", o->out_size,
+                    "size WxH of the output ports [default: the size of the input images]");
     sub->add_option("--report", o->report, "write a JSON report here");
+    sub->add_option("--dump-pes", o->dump_pes,
+                    "print the registers and flags of these PEs at the end (a:b or 1,5,9; also "
+                    "in the report)");
+    sub->add_option("--dump-mem", o->dump_mem,
+                    "with --dump-pes: also their local memory A:B (inclusive, e.g. 0x100:0x13f)");
     add_machine_flags(sub, o->machine);
+    add_wave_flags(sub, o->waves);
 
     return {
         sub, [o]() {
@@ -182,8 +302,16 @@ Subcommand register_exec(CLI::App& app) {
                 throw UserError("invalid value '" + o->model + "' for --model: exec runs " +
                                 exec_model_names());
             const auto params = parse_params(o->params);
+            const std::vector<int> dump_pes =
+                o->dump_pes.empty() ? std::vector<int>{} : parse_pe_list(o->dump_pes, cfg.pes);
+            if (!o->dump_mem.empty() && dump_pes.empty())
+                throw UserError("--dump-mem needs --dump-pes (whose memory to print)");
+            const auto mem_range = o->dump_mem.empty()
+                                       ? std::pair<uint32_t, uint32_t>{0, 0}
+                                       : parse_mem_range(o->dump_mem, cfg.mem_bytes);
             check_output_file("--out-left", o->out_left, true);
             check_output_file("--report", o->report, false);
+            check_wave_outputs(o->waves);
             const isa::ImageVideoPort::Image left = read_input(o->left, "left image");
             const isa::ImageVideoPort::Image right = read_input(o->right, "right image");
             if (!o->left.empty() && !o->right.empty() &&
@@ -193,11 +321,21 @@ Subcommand register_exec(CLI::App& app) {
                                 ", " + o->right + " is " + std::to_string(right.width) + "x" +
                                 std::to_string(right.height));
             const isa::ImageVideoPort::Image& shape = o->left.empty() ? right : left;
-            const int out_w = shape.width, out_h = shape.height;
+            int out_w = shape.width, out_h = shape.height;
+            if (!o->out_size.empty()) {
+                int w = 0, h = 0;
+                char x = 0;
+                if (std::sscanf(o->out_size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' ||
+                    w < 1 || h < 1 || w > 65536 || h > 65536)
+                    throw UserError("invalid value '" + o->out_size +
+                                    "' for --out-size: expected WxH with W and H in 1..65536");
+                out_w = w;
+                out_h = h;
+            }
             if (!o->out_left.empty() && out_w == 0)
                 throw UserError(
-                    "--out-left needs an input image (--left or --right): the output image "
-                    "has the size of the inputs");
+                    "--out-left needs an input image (--left or --right) or --out-size: the "
+                    "output image has the size of the inputs");
             const isa::Program prog = read_program(*o);
             // Decoding checks every word against this machine (LoadError) before the run;
             // the core model runs this machine, the TLM model builds its own.
@@ -226,21 +364,30 @@ Subcommand register_exec(CLI::App& app) {
             std::fflush(stdout);
 
             ExecResult r;
+            WaveSession waves(o->waves, cfg, prog);
             try {
 #ifdef IMAPSIM_HAVE_TLM
                 if (o->model == "tlm") {
                     machine.reset();
-                    r = run_tlm_model(cfg, prog, params, left, right, out_w, out_h);
+                    r = run_tlm_model(cfg, prog, params, left, right, out_w, out_h,
+                                      waves.observer());
                 } else
 #endif
+                {
+                    machine->set_observer(waves.observer());
                     r = run_core(*machine, params, left, right, out_w, out_h);
+                }
             } catch (const isa::LoadError& e) {
                 throw UserError(o->program + ": " + e.what());
             } catch (const isa::ConfigError& e) {
                 throw UserError(e.what());
             } catch (const isa::Fault& e) {
+                // The waves and the state up to the fault are what one debugs with.
+                waves.finish(e.cycle());
+                if (machine) dump_state(*machine, dump_pes, !o->dump_mem.empty(), mem_range);
                 throw UserError(std::string("machine fault: ") + e.what(), kExitFault);
             }
+            waves.finish(r.cycles);
 
             std::printf("  halted: yes, %llu instructions\n",
                         static_cast<unsigned long long>(r.stats.instructions));
@@ -262,6 +409,9 @@ Subcommand register_exec(CLI::App& app) {
                             std::to_string(r.cp[static_cast<size_t>(i)]);
             std::printf("  CP registers (non-zero):%s\n", regs.empty() ? " none" : regs.c_str());
             std::printf("  wall: %.3f s (%s)\n", r.wall_s, o->model.c_str());
+            const isa::Machine* final = r.final ? r.final.get() : machine.get();
+            nlohmann::json pe_dump = nlohmann::json::array();
+            if (final) pe_dump = dump_state(*final, dump_pes, !o->dump_mem.empty(), mem_range);
 
             if (!o->out_left.empty()) {
                 cv::Mat img(r.out.height, r.out.width, CV_8UC1, r.out.pixels.data());
@@ -283,9 +433,10 @@ Subcommand register_exec(CLI::App& app) {
                 j["cp"] = r.cp;
                 nlohmann::json pb = nlohmann::json::object();
                 for (const auto& [i, val] : params) pb[std::to_string(i)] = val;
-                nlohmann::json mach = nlohmann::json::object();
-                for (const isa::ParamInfo& pi : cfg.list()) mach[pi.name] = pi.value;
-                j["params"] = {{"machine", mach}, {"param_block", pb}};
+                j["params"] = {{"machine", machine_params_json(cfg)},
+                               {"machine_info", machine_param_info_json(cfg)},
+                               {"param_block", pb}};
+                if (!dump_pes.empty()) j["pes"] = pe_dump;
                 j["video"] = {{"left", o->left},
                               {"right", o->right},
                               {"out_width", out_w},

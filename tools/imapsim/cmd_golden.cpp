@@ -4,6 +4,7 @@
 
 #include "cli_common.hpp"
 #include "imap/golden/stereo.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
 
 namespace imapsim {
@@ -13,7 +14,7 @@ namespace v = imap::vision;
 
 namespace {
 struct GoldenOptions {
-    std::string left, right, out;
+    std::string left, right, out, out_color;
     AlgoFlags algo;
 };
 }  // namespace
@@ -25,6 +26,9 @@ Subcommand register_golden(CLI::App& app) {
     sub->add_option("--left", o->left, "left image (any format OpenCV reads)")->required();
     sub->add_option("--right", o->right, "right image")->required();
     sub->add_option("--out", o->out, "output disparity map (8-bit, 255 = occluded)")->required();
+    sub->add_option("--out-color", o->out_color,
+                    "also write it colour-mapped here (JET from 0 = blue to D-1 = red, occluded "
+                    "white; docs/scoring.md)");
     add_algo_flags(sub, o->algo);
 
     return {sub, [o]() {
@@ -32,6 +36,7 @@ Subcommand register_golden(CLI::App& app) {
                 bool has_roi = false;
                 const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
                 check_output_file("--out", o->out, true);
+                check_output_file("--out-color", o->out_color, true);
                 const cv::Mat L = v::load_grey8(o->left, "left image");
                 const cv::Mat R = v::load_grey8(o->right, "right image");
                 if (L.size() != R.size())
@@ -53,6 +58,8 @@ Subcommand register_golden(CLI::App& app) {
                         .count();
                 cv::Mat out(m.height, m.width, CV_8UC1, const_cast<uint8_t*>(m.data.data()));
                 v::write_image_atomic(o->out, out);
+                if (!o->out_color.empty())
+                    v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
                 size_t matched = 0;
                 for (uint8_t d : m.data) matched += d != g::kOccluded;
                 std::printf(

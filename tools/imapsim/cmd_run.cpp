@@ -3,6 +3,7 @@
 // the golden bit for bit and reports cycles, modeled time and phases.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -10,7 +11,10 @@
 #include "imap/firmware/run.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
+#include "imap/isa/program.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
+#include "imap/vision/scene.hpp"
 #include "imap/vision/score.hpp"
 #include "imap/vision/synth.hpp"
 #include "model_runner.hpp"
@@ -24,7 +28,8 @@ namespace isa = imap::isa;
 
 namespace {
 struct RunOptions {
-    std::string left, right, out, report;
+    std::string left, right, scene, gt, gt_scale, out, out_color, report;
+    std::string emit_program, emit_defines;
     std::string model = kDefaultModel;
     uint64_t seed = 1;
     std::string size = "160x128";
@@ -33,6 +38,51 @@ struct RunOptions {
     RtlFlags rtl;
     WaveFlags waves;
 };
+
+// Two output flags naming one file would overwrite each other.
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outs) {
+    namespace fs = std::filesystem;
+    for (size_t i = 0; i < outs.size(); ++i)
+        for (size_t k = i + 1; k < outs.size(); ++k) {
+            if (outs[i].second.empty() || outs[k].second.empty()) continue;
+            const fs::path a = fs::absolute(outs[i].second).lexically_normal();
+            const fs::path b = fs::absolute(outs[k].second).lexically_normal();
+            if (a == b)
+                throw UserError(outs[i].first + " and " + outs[k].first + " name the same file '" +
+                                outs[i].second + "'");
+        }
+}
+
+// The emitted firmware source: the planner's constants and per-column plan
+// macros, ending with the .include of dp.s, after a header that says how to
+// assemble it and how to exec the result.
+std::string defines_text(const ModelRun& run, const std::string& source,
+                         const isa::MachineConfig& cfg, const std::string& emit_program,
+                         const std::string& inc_path) {
+    std::string t;
+    t += "; Constants and plan of the DP firmware for one imapsim run (docs/firmware.md,\n";
+    t += "; \"Assembling the firmware by hand\"): " + source + "\n";
+    t += ";\n; Re-assemble (this file includes dp.s at its end):\n";
+    t += ";     imapsim asm " + std::filesystem::absolute(inc_path).lexically_normal().string() +
+         " -o FRAME.bin\n";
+    t += "; gives the program that ran.\n";
+    std::string params;
+    for (const auto& [i, val] : fw::param_block(run.plan))
+        params += " --param " + std::to_string(i) + "=" + std::to_string(val);
+    std::string machine;
+    const isa::MachineConfig def;
+    const auto now = cfg.list(), base = def.list();
+    for (size_t i = 0; i < now.size() && i < base.size(); ++i)
+        if (now[i].value != base[i].value) machine += " --set " + now[i].name + "=" + now[i].value;
+    t += "; Run it (the images of the run, whose ROI the constants X0, Y0 and the\n";
+    t += "; program's size name; the map comes out of video port 0):\n";
+    t += ";     imapsim exec " + (emit_program.empty() ? std::string("FRAME.bin") : emit_program) +
+         " --left LEFT --right RIGHT" + params + " --out-size " + std::to_string(run.plan.roi.w) +
+         "x" + std::to_string(run.plan.roi.h) + machine + " --out-left MAP.png\n";
+    t += "; Param block (the batch table):" + params + "\n";
+    t += run.source;
+    return t;
+}
 
 }  // namespace
 
@@ -44,8 +94,26 @@ Subcommand register_run(CLI::App& app) {
         "(default: the built-in synthetic scene)");
     sub->add_option("--left", o->left, "left image (default: synthetic scene)");
     sub->add_option("--right", o->right, "right image");
-    sub->add_option("--out", o->out, "write the model's disparity map here");
+    sub->add_option("--scene", o->scene,
+                    "a scene folder (left.png, right.png, gt.png, masks; scenes.json in it or its "
+                    "parent, as for eval): its images, its D (unless --D) and bad-1 against its "
+                    "ground truth");
+    sub->add_option("--gt", o->gt, "with --left/--right: ground truth to score against (bad-1)");
+    sub->add_option("--gt-scale", o->gt_scale,
+                    "ground-truth value / scale = disparity [default: --scene: scenes.json; "
+                    "--gt: 1]");
+    sub->add_option("--out", o->out,
+                    "write the model's disparity map here (8-bit grey: the disparity, 255 = "
+                    "occluded)");
+    sub->add_option("--out-color", o->out_color,
+                    "write the map colour-mapped here (JET from 0 = blue to D-1 = red, occluded "
+                    "white; docs/scoring.md)");
     sub->add_option("--report", o->report, "write a JSON report here");
+    sub->add_option("--emit-program", o->emit_program,
+                    "write the program that ran here (IMAPFW01, for disasm / exec)");
+    sub->add_option("--emit-defines", o->emit_defines,
+                    "write its source here: the planner's constants and plan macros, including "
+                    "dp.s (for asm; docs/firmware.md)");
     sub->add_option("--model", o->model, "model to run: " + model_names())->capture_default_str();
     sub->add_option("--seed", o->seed, "synthetic scene seed")->capture_default_str();
     sub->add_option("--size", o->size, "synthetic scene size WxH")->capture_default_str();
@@ -54,95 +122,199 @@ Subcommand register_run(CLI::App& app) {
     add_rtl_flags(sub, o->rtl);
     add_wave_flags(sub, o->waves);
 
-    return {sub, [o]() {
-                g::Roi roi;
-                bool has_roi = false;
-                const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-                const isa::MachineConfig cfg = parse_machine_flags(o->machine);
-                check_model_name(o->model);
-                check_output_file("--out", o->out, true);
-                check_output_file("--report", o->report, false);
-                check_output_file("--vcd", o->waves.vcd, false);
-                cv::Mat L, R, gt;
-                std::string source;
-                if (o->left.empty() != o->right.empty())
-                    throw UserError("--left and --right must be given together");
-                if (!o->left.empty()) {
-                    L = v::load_grey8(o->left, "left image");
-                    R = v::load_grey8(o->right, "right image");
-                    source = o->left + " + " + o->right;
-                } else {
-                    int w = 0, h = 0;
-                    char x = 0;
-                    if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' ||
-                        w < 2 || h < 1 || w > 4096 || h > 4096)
-                        throw UserError("invalid value '" + o->size +
-                                        "' for --size: expected WxH with W in 2..4096, H in "
-                                        "1..4096");
-                    v::SynthScene sc = v::make_synth_scene(o->seed, w, h);
-                    L = sc.left;
-                    R = sc.right;
-                    gt = sc.gt;
-                    source = "synthetic scene seed " + std::to_string(o->seed) + " " + o->size;
-                    if (!has_roi && w >= 128 && h >= 128) {
-                        roi = {(w - 128) / 2, (h - 128) / 2, 128, 128};  // the headline ROI
-                        has_roi = true;
+    return {
+        sub, [o]() {
+            g::Roi roi;
+            bool has_roi = false;
+            g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
+            const isa::MachineConfig cfg = parse_machine_flags(o->machine);
+            check_model_name(o->model);
+            // Every output path, before any work (docs/errors.md).
+            check_output_file("--out", o->out, true);
+            check_output_file("--out-color", o->out_color, true);
+            check_output_file("--report", o->report, false);
+            check_output_file("--emit-program", o->emit_program, false);
+            check_output_file("--emit-defines", o->emit_defines, false);
+            check_wave_outputs(o->waves);
+            check_distinct_outputs({{"--out", o->out},
+                                    {"--out-color", o->out_color},
+                                    {"--report", o->report},
+                                    {"--emit-program", o->emit_program},
+                                    {"--emit-defines", o->emit_defines},
+                                    {"--vcd", o->waves.vcd}});
+
+            const bool explicit_D = !o->algo.D.empty();
+            double gt_scale = 0;
+            if (!o->gt_scale.empty()) {
+                if (o->scene.empty() && o->gt.empty())
+                    throw UserError("--gt-scale needs --scene or --gt");
+                gt_scale = parse_real_flag("--gt-scale", o->gt_scale, 0, 1e6, true);
+            }
+            cv::Mat L, R, gt;
+            v::Scene scene;  // ground truth and masks, when scored against
+            bool scored = false;
+            std::string source;
+            if (o->left.empty() != o->right.empty())
+                throw UserError("--left and --right must be given together");
+            if (!o->scene.empty() && !o->left.empty())
+                throw UserError("give either --scene DIR or --left/--right, not both");
+            if (!o->gt.empty() && o->left.empty())
+                throw UserError("--gt needs --left and --right (--scene has its own)");
+            if (!o->scene.empty()) {
+                scene = v::load_scene(o->scene, gt_scale, explicit_D ? p.D : 0);
+                if (!explicit_D) p.D = scene.ndisp;
+                L = scene.left;
+                R = scene.right;
+                scored = true;
+                source = "scene " + scene.name;
+            } else if (!o->left.empty()) {
+                L = v::load_grey8(o->left, "left image");
+                R = v::load_grey8(o->right, "right image");
+                source = o->left + " + " + o->right;
+                if (!o->gt.empty()) {
+                    scene.name = o->gt;
+                    scene.gt = v::load_grey8(o->gt, "ground truth");
+                    if (scene.gt.size() != L.size())
+                        throw UserError("ground truth '" + o->gt + "' is " +
+                                        std::to_string(scene.gt.cols) + "x" +
+                                        std::to_string(scene.gt.rows) + " but the left image is " +
+                                        std::to_string(L.cols) + "x" + std::to_string(L.rows));
+                    scene.gt_scale = gt_scale > 0 ? gt_scale : 1.0;
+                    scene.default_masks = true;
+                    scene.nonocc = cv::Mat(L.size(), CV_8UC1, cv::Scalar(255));
+                    scene.all = scene.nonocc.clone();
+                    scene.disc = scene.nonocc.clone();
+                    scored = true;
+                } else if (!explicit_D) {
+                    // The images of a scene folder: say that its D differs.
+                    try {
+                        const v::Scene sc = v::load_scene(folder_of(o->left));
+                        if (sc.ndisp != p.D)
+                            std::fprintf(stderr,
+                                         "note: %s lies in scene folder '%s', whose "
+                                         "scenes.json gives "
+                                         "ndisp %d; this run uses --D %d (the default): "
+                                         "--scene %s takes the scene's D and scores it\n",
+                                         o->left.c_str(), sc.name.c_str(), sc.ndisp, p.D,
+                                         folder_of(o->left).c_str());
+                    } catch (const std::exception&) {
                     }
                 }
-                if (L.size() != R.size())
-                    throw UserError("left and right images differ in size: " + o->left + " is " +
-                                    std::to_string(L.cols) + "x" + std::to_string(L.rows) + ", " +
-                                    o->right + " is " + std::to_string(R.cols) + "x" +
-                                    std::to_string(R.rows));
-                if (!has_roi) roi = {0, 0, L.cols, L.rows};
+            } else {
+                int w = 0, h = 0;
+                char x = 0;
+                if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 2 ||
+                    h < 1 || w > 4096 || h > 4096)
+                    throw UserError("invalid value '" + o->size +
+                                    "' for --size: expected WxH with W in 2..4096, H in "
+                                    "1..4096");
+                v::SynthScene sc = v::make_synth_scene(o->seed, w, h);
+                L = sc.left;
+                R = sc.right;
+                gt = sc.gt;
+                source = "synthetic scene seed " + std::to_string(o->seed) + " " + o->size;
+                if (!has_roi && w >= 128 && h >= 128) {
+                    roi = {(w - 128) / 2, (h - 128) / 2, 128, 128};  // the headline ROI
+                    has_roi = true;
+                }
+            }
+            if (L.size() != R.size())
+                throw UserError("left and right images differ in size: " + o->left + " is " +
+                                std::to_string(L.cols) + "x" + std::to_string(L.rows) + ", " +
+                                o->right + " is " + std::to_string(R.cols) + "x" +
+                                std::to_string(R.rows));
+            if (!has_roi) roi = {0, 0, L.cols, L.rows};
+            try {
+                g::validate(p, roi, L.cols, L.rows);
+            } catch (const g::ParamError& e) {
+                throw UserError(e.what());
+            }
+            const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
+
+            std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
+                        source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
+                        p.vote ? "on" : "off", g::to_string(p.frame));
+            std::printf(
+                "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
+                "model %s\n",
+                cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
+            std::fflush(stdout);
+
+            const auto tg = std::chrono::steady_clock::now();
+            const g::DisparityMap want = g::compute(p, lv, rv, roi);
+            const double golden_ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
+                    .count();
+
+            set_rtl_flags(o->rtl);
+            ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves);
+            const fw::FrameResult& r = run.result;
+            const Comparison cmp = compare_maps(r.map, want);
+            print_run_summary(run, cmp, cfg, golden_ms);
+            g::Params pl = p;
+            pl.frame = g::Frame::Left;
+            nlohmann::json truth;
+            if (!gt.empty()) {
+                const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
+                const double bad = v::bad_percent_roi(ml, gt, roi);
+                std::printf("  golden bad-1 vs ground truth (left frame, filled): %.2f%%\n", bad);
+                truth = {{"bad1_all", bad}};
+            } else if (scored) {
+                // As eval scores it: the golden's left-frame map after the fill.
+                const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
+                const v::BadScores b = v::score_bad_roi(ml, scene, roi, 1.0);
+                if (scene.default_masks)
+                    std::printf(
+                        "  golden bad-1 vs ground truth (left frame, filled, every pixel of "
+                        "the ROI): %.2f%%\n",
+                        b.all);
+                else
+                    std::printf(
+                        "  golden bad-1 vs ground truth (left frame, filled%s): nonocc "
+                        "%.2f%%, all %.2f%%, disc %.2f%%\n",
+                        roi.w == L.cols && roi.h == L.rows ? "" : ", inside the ROI", b.nonocc,
+                        b.all, b.disc);
+                truth = {{"bad1_nonocc", b.nonocc},
+                         {"bad1_all", b.all},
+                         {"bad1_disc", b.disc},
+                         {"gt_scale", scene.gt_scale},
+                         {"masks", !scene.default_masks}};
+            }
+            const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
+                              const_cast<uint8_t*>(r.map.data.data()));
+            if (!o->out.empty()) {
+                v::write_image_atomic(o->out, out);
+                std::printf("  disparity map -> %s\n", o->out.c_str());
+            }
+            if (!o->out_color.empty()) {
+                v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
+                std::printf("  colour-mapped map -> %s (occluded: white)\n", o->out_color.c_str());
+            }
+            if (!o->emit_program.empty()) {
                 try {
-                    g::validate(p, roi, L.cols, L.rows);
-                } catch (const g::ParamError& e) {
-                    throw UserError(e.what());
+                    isa::save_program(run.program, o->emit_program);
+                } catch (const std::exception& e) {
+                    throw UserError("--emit-program '" + o->emit_program + "': " + e.what());
                 }
-                const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
-
-                std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
-                            source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
-                            p.vote ? "on" : "off", g::to_string(p.frame));
-                std::printf(
-                    "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
-                    "model %s\n",
-                    cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
-                std::fflush(stdout);
-
-                const auto tg = std::chrono::steady_clock::now();
-                const g::DisparityMap want = g::compute(p, lv, rv, roi);
-                const double golden_ms =
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
-                        .count();
-
-                set_rtl_flags(o->rtl);
-                ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves);
-                const fw::FrameResult& r = run.result;
-                const Comparison cmp = compare_maps(r.map, want);
-                print_run_summary(run, cmp, cfg, golden_ms);
-                if (!gt.empty()) {
-                    g::Params pl = p;
-                    pl.frame = g::Frame::Left;
-                    const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
-                    std::printf("  golden bad-1 vs ground truth (left frame, filled): %.2f%%\n",
-                                v::bad_percent_roi(ml, gt, roi));
-                }
-                if (!o->out.empty()) {
-                    cv::Mat out(r.map.height, r.map.width, CV_8UC1,
-                                const_cast<uint8_t*>(r.map.data.data()));
-                    v::write_image_atomic(o->out, out);
-                    std::printf("  disparity map -> %s\n", o->out.c_str());
-                }
-                if (!o->report.empty()) {
-                    nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms);
-                    j["source"] = source;
-                    v::write_text_atomic(o->report, j.dump(2) + "\n");
-                    std::printf("  report -> %s\n", o->report.c_str());
-                }
-                return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
-            }};
+                std::printf("  program (%zu instructions) -> %s\n", run.program.code.size(),
+                            o->emit_program.c_str());
+            }
+            if (!o->emit_defines.empty()) {
+                v::write_text_atomic(
+                    o->emit_defines,
+                    defines_text(run, source, cfg, o->emit_program, o->emit_defines));
+                std::printf("  firmware source (constants and plan) -> %s\n",
+                            o->emit_defines.c_str());
+            }
+            if (!o->report.empty()) {
+                nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms);
+                j["source"] = source;
+                if (!truth.is_null()) j["ground_truth"] = truth;
+                v::write_text_atomic(o->report, j.dump(2) + "\n");
+                std::printf("  report -> %s\n", o->report.c_str());
+            }
+            return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
+        }};
 }
 
 }  // namespace imapsim

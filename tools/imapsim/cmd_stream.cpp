@@ -20,6 +20,7 @@
 #include "imap/testbench/frame_source.hpp"
 #include "imap/testbench/stream.hpp"
 #include "imap/vision/calib.hpp"
+#include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
 #include "interrupt.hpp"
 #include "model_runner.hpp"
@@ -123,7 +124,9 @@ json record_json(const tb::FrameRecord& r) {
               {"latency_ms", r.latency_ms},
               {"deadline_met", r.deadline_met},
               {"differing_pixels", r.differing},
-              {"wall_s", r.wall_s}};
+              {"wall_s", r.wall_s},
+              {"model_wall_s", r.model_wall_s},
+              {"golden_wall_s", r.golden_wall_s}};
     j["bad1_percent"] = r.bad1 >= 0 ? json(r.bad1) : json(nullptr);
     json ph = json::object();
     for (const auto& [name, c] : r.phases) ph[name] = c;
@@ -205,8 +208,9 @@ class SideBySide {
         tmp_ = (p.parent_path() / ("." + p.filename().string() + ".tmp-" +
                                    std::to_string(::getpid()) + p.extension().string()))
                    .string();
+        legend_ = v::disparity_legend(roi.w, D);
         const bool ok = w_.open(tmp_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps,
-                                cv::Size(2 * roi.w, roi.h), true);
+                                cv::Size(2 * roi.w, roi.h + legend_.rows), true);
         if (!ok) {
             std::remove(tmp_.c_str());
             throw UserError("--video '" + path +
@@ -221,15 +225,13 @@ class SideBySide {
         }
     }
     void add(const cv::Mat& left, const cv::Mat& disp) {
-        cv::Mat frame(roi_.h, 2 * roi_.w, CV_8UC3);
+        cv::Mat frame(roi_.h + legend_.rows, 2 * roi_.w, CV_8UC3, cv::Scalar(0, 0, 0));
         cv::cvtColor(left(cv::Rect(roi_.x0, roi_.y0, roi_.w, roi_.h)),
                      frame(cv::Rect(0, 0, roi_.w, roi_.h)), cv::COLOR_GRAY2BGR);
-        // Disparities 0..D-1 over the full colour map; 255 (occluded) black.
-        cv::Mat scaled, colour;
-        disp.convertTo(scaled, CV_8U, D_ > 1 ? 255.0 / (D_ - 1) : 1.0);
-        cv::applyColorMap(scaled, colour, cv::COLORMAP_JET);
-        colour.setTo(cv::Scalar(0, 0, 0), disp == 255);
-        colour.copyTo(frame(cv::Rect(roi_.w, 0, roi_.w, roi_.h)));
+        // The colours of the disparity PNGs' colour maps (occluded: white),
+        // with the legend under the map (docs/stream.md).
+        v::colorize_disparity(disp, D_).copyTo(frame(cv::Rect(roi_.w, 0, roi_.w, roi_.h)));
+        legend_.copyTo(frame(cv::Rect(roi_.w, roi_.h, roi_.w, legend_.rows)));
         w_.write(frame);
         ++frames_;
     }
@@ -252,6 +254,7 @@ class SideBySide {
     g::Roi roi_;
     int D_;
     cv::VideoWriter w_;
+    cv::Mat legend_;
     int frames_ = 0;
     bool done_ = false;
 };
@@ -350,12 +353,7 @@ Subcommand register_stream(CLI::App& app) {
             // A file inside --out-dir: its folder is created with it, and
             // checked above.
             auto check_file = [&](const char* flag, const std::string& path) {
-                const auto norm = [](const fs::path& q) {
-                    return (fs::absolute(q) / "").lexically_normal();
-                };
-                if (!o->out_dir.empty() && !path.empty() &&
-                    norm(fs::path(path).parent_path()) == norm(o->out_dir))
-                    return;
+                if (file_in_folder(path, o->out_dir)) return;
                 check_output_file(flag, path, false);
             };
             check_file("--json", o->json_log);

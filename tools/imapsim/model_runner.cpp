@@ -84,12 +84,12 @@ void print_rtl_area() {
         std::printf("  RTL area                not synthesized (no yosys in this build)\n");
         return;
     }
-    std::printf("  RTL area (yosys, generic cells): %llu cells per PE, %llu per CP; %llu + %llu "
-                "memory bits\n",
-                static_cast<unsigned long long>(s.pe.cells),
-                static_cast<unsigned long long>(s.cp.cells),
-                static_cast<unsigned long long>(s.pe.memory_bits),
-                static_cast<unsigned long long>(s.cp.memory_bits));
+    std::printf(
+        "  RTL area (yosys, generic cells): %llu cells per PE, %llu per CP; %llu + %llu "
+        "memory bits\n",
+        static_cast<unsigned long long>(s.pe.cells), static_cast<unsigned long long>(s.cp.cells),
+        static_cast<unsigned long long>(s.pe.memory_bits),
+        static_cast<unsigned long long>(s.cp.memory_bits));
 #endif
 }
 
@@ -121,7 +121,7 @@ void print_rtl_waves(const imap::rtl::RtlWaves& w) {
                 imap::rtl::gtkw_path(w.path).c_str());
 }
 #endif
-}
+}  // namespace
 
 void add_rtl_flags(CLI::App* app, RtlFlags& f) {
     const char* grp = "RTL / lockstep (docs/rtl.md)";
@@ -174,6 +174,121 @@ void add_wave_flags(CLI::App* app, WaveFlags& f) {
         ->group(grp);
 }
 
+void check_wave_outputs(const WaveFlags& f) {
+    if (f.vcd.empty()) return;
+    check_output_file("--vcd", f.vcd, false);
+#ifdef IMAPSIM_HAVE_WAVES
+    const std::string view = imap::waves::detail::gtkw_path_of(f.vcd);
+    if (view == f.vcd)
+        throw UserError("--vcd '" + f.vcd +
+                        "': the GTKWave view would overwrite it (use a .vcd name)");
+    check_output_file("--vcd (its GTKWave view)", view, false);
+#endif
+}
+
+#ifdef IMAPSIM_HAVE_WAVES
+struct WaveSession::Impl {
+    WaveFlags flags;
+    imap::waves::TraceSelection sel;
+    std::unique_ptr<imap::waves::IsaTracer> tracer;
+};
+
+WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig& cfg,
+                         const isa::Program& prog)
+    : impl_(std::make_unique<Impl>()) {
+    if (f.vcd.empty()) return;
+    impl_->flags = f;
+    try {
+        imap::waves::TraceSelection sel =
+            imap::waves::parse_trace_selection(f.pes, f.window, f.signals, f.limit_mb, cfg);
+        for (const fw::WaveGroup& g : fw::wave_groups()) sel.groups.push_back({g.name, g.regs});
+        if (sel.t1 != UINT64_MAX) {
+            const double est = imap::waves::IsaTracer::estimate_bytes(sel, sel.t1 - sel.t0);
+            if (est > static_cast<double>(sel.limit_bytes))
+                std::fprintf(stderr,
+                             "warning: --vcd: the selection (%zu PEs x %llu cycles) is "
+                             "estimated at %.0f MB, above %s: the trace will stop there\n",
+                             sel.pes.size(), static_cast<unsigned long long>(sel.t1 - sel.t0),
+                             est / 1048576.0, sel.limit_name.c_str());
+        }
+        impl_->sel = sel;
+        impl_->tracer = std::make_unique<imap::waves::IsaTracer>(f.vcd, cfg, prog, sel);
+    } catch (const imap::waves::WaveError& e) {
+        throw UserError(e.what());
+    }
+}
+
+WaveSession::~WaveSession() = default;
+
+bool WaveSession::active() const {
+    return impl_->tracer != nullptr;
+}
+
+isa::Observer* WaveSession::observer() {
+    return impl_->tracer.get();
+}
+
+void WaveSession::finish(uint64_t end_cycle) {
+    namespace w = imap::waves;
+    const w::TraceSelection& sel = impl_->sel;
+    uint64_t traced = 0;
+    std::string what;
+    if (impl_->tracer) {
+        w::IsaTracer& t = *impl_->tracer;
+        try {
+            t.finish(end_cycle);
+        } catch (const w::WaveError& e) {
+            throw UserError(std::string("--vcd: ") + e.what());
+        }
+        traced = t.traced_instructions();
+        const bool view = t.gtkw_error().empty();
+        std::printf("  waves -> %s (%.2f MB, %llu instructions traced%s)%s%s\n",
+                    t.vcd_path().c_str(), static_cast<double>(t.bytes()) / 1048576.0,
+                    static_cast<unsigned long long>(traced),
+                    t.limit_reached() ? ", stopped at --trace-limit-mb" : "", view ? " + " : "",
+                    view ? t.gtkw_path().c_str() : "");
+        std::fflush(stdout);  // the warning after the line it is about
+        if (!view)
+            std::fprintf(stderr,
+                         "warning: --vcd: the GTKWave view was not written (%s); the VCD %s is "
+                         "complete and kept\n",
+                         t.gtkw_error().c_str(), t.vcd_path().c_str());
+        what = "instruction";
+    } else {
+        return;
+    }
+    std::fflush(stdout);
+    if (traced == 0) {
+        const std::string window = impl_->flags.window.empty() ? "all" : impl_->flags.window;
+        if (sel.t0 >= end_cycle)
+            std::fprintf(stderr,
+                         "warning: --trace-window %s starts at cycle %llu, after the end of the "
+                         "run (cycle %llu): the trace is empty\n",
+                         window.c_str(), static_cast<unsigned long long>(sel.t0),
+                         static_cast<unsigned long long>(end_cycle));
+        else
+            std::fprintf(stderr,
+                         "warning: --trace-window %s: no %s of the run (cycles 0..%llu) starts "
+                         "in it: the trace is empty\n",
+                         window.c_str(), what.c_str(), static_cast<unsigned long long>(end_cycle));
+    }
+}
+#else
+struct WaveSession::Impl {};
+WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig&, const isa::Program&)
+    : impl_(std::make_unique<Impl>()) {
+    if (!f.vcd.empty()) throw UserError("--vcd: this imapsim has no waves library");
+}
+WaveSession::~WaveSession() = default;
+bool WaveSession::active() const {
+    return false;
+}
+isa::Observer* WaveSession::observer() {
+    return nullptr;
+}
+void WaveSession::finish(uint64_t) {}
+#endif
+
 ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& roi,
                    const g::ImageView& left, const g::ImageView& right,
                    const isa::MachineConfig& cfg, const WaveFlags* waves) {
@@ -191,51 +306,25 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     }
     const isa::Program prog = fw::assemble_frame(p, run.plan);
     run.program_words = prog.code.size();
-    isa::Observer* observer = nullptr;
+    run.program = prog;
+    run.source = fw::frame_source(p, run.plan);
+    // --model rtl writes the design's own waves (Verilator tracing); the
+    // other models trace the instruction-set machine per instruction.
+    const bool rtl_waves_on = model == "rtl" && waves && !waves->vcd.empty();
+    WaveSession session(waves && !rtl_waves_on ? *waves : WaveFlags{}, cfg, prog);
+    isa::Observer* observer = session.observer();
+    auto finish_waves = [&](uint64_t end_cycle) { session.finish(end_cycle); };
 #ifdef IMAPSIM_HAVE_WAVES
-    // Waves: an observer on the machine; nothing is attached without --vcd.
-    std::unique_ptr<imap::waves::IsaTracer> tracer;
-    imap::waves::TraceSelection rtl_sel;  // --model rtl: the design's own waves
-    auto finish_waves = [&](uint64_t end_cycle) {
-        if (!tracer) return;
+    imap::waves::TraceSelection rtl_sel;
+    if (rtl_waves_on) {
+        check_output_file("--vcd", waves->vcd, false);
         try {
-            tracer->finish(end_cycle);
-        } catch (const imap::waves::WaveError& e) {
-            throw UserError(std::string("--vcd: ") + e.what());
-        }
-        std::printf("  waves -> %s (%.2f MB, %llu instructions traced%s) + %s\n",
-                    tracer->vcd_path().c_str(), static_cast<double>(tracer->bytes()) / 1048576.0,
-                    static_cast<unsigned long long>(tracer->traced_instructions()),
-                    tracer->limit_reached() ? ", stopped at --trace-limit-mb" : "",
-                    tracer->gtkw_path().c_str());
-    };
-    if (waves && !waves->vcd.empty()) {
-        try {
-            const imap::waves::TraceSelection sel = imap::waves::parse_trace_selection(
-                waves->pes, waves->window, waves->signals, waves->limit_mb, cfg);
-            if (sel.t1 != UINT64_MAX) {
-                const double est = imap::waves::IsaTracer::estimate_bytes(sel, sel.t1 - sel.t0);
-                if (est > static_cast<double>(sel.limit_bytes))
-                    std::fprintf(stderr,
-                                 "warning: --vcd: the selection (%zu PEs x %llu cycles) is "
-                                 "estimated at %.0f MB, above %s: the trace will stop there\n",
-                                 sel.pes.size(), static_cast<unsigned long long>(sel.t1 - sel.t0),
-                                 est / 1048576.0, sel.limit_name.c_str());
-            }
-            if (model == "rtl") {
-                check_output_file("--vcd", waves->vcd, false);
-                rtl_sel = sel;
-            } else {
-                tracer = std::make_unique<imap::waves::IsaTracer>(waves->vcd, cfg, prog, sel);
-            }
+            rtl_sel = imap::waves::parse_trace_selection(waves->pes, waves->window, waves->signals,
+                                                         waves->limit_mb, cfg);
         } catch (const imap::waves::WaveError& e) {
             throw UserError(e.what());
         }
-        observer = tracer.get();
     }
-#else
-    if (waves && !waves->vcd.empty()) throw UserError("--vcd: this imapsim has no waves library");
-    auto finish_waves = [](uint64_t) {};
 #endif
     try {
 #ifdef IMAPSIM_HAVE_RTL
@@ -265,9 +354,9 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             if (model == "rtl") {
                 rtl::RtlRunResult rr;
                 try {
-                    rr = rtl::run_rtl(cfg, prog, fw::param_block(run.plan),
-                                      fw::to_video_image(left), fw::to_video_image(right), roi.w,
-                                      roi.h, &out, lc.rtl);
+                    rr =
+                        rtl::run_rtl(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
+                                     fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
                 } catch (const isa::Fault&) {
 #ifdef IMAPSIM_HAVE_WAVES
                     print_rtl_waves(lc.rtl.waves);
@@ -306,6 +395,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            fw::set_relayout_figures(run.plan, r);
             finish_waves(r.cycles);
             return run;
         }
@@ -327,6 +417,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             r.map.width = roi.w;
             r.map.height = roi.h;
             r.map.data = out.image[0].pixels;
+            fw::set_relayout_figures(run.plan, r);
             finish_waves(r.cycles);
             return run;
         }
@@ -389,7 +480,16 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
                             ? 0.0
                             : static_cast<double>(r.stats.active_lane_cycles) /
                                   (static_cast<double>(cfg.pes) * static_cast<double>(r.cycles));
+    std::printf("  re-layout: in %llu cycles (ring lower bound %lld), out %llu (bound %lld)\n",
+                static_cast<unsigned long long>(r.relayout_in),
+                static_cast<long long>(r.relayout_bound_in),
+                static_cast<unsigned long long>(r.relayout_out),
+                static_cast<long long>(r.relayout_bound_out));
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
+    const std::string faster = faster_assumptions_text(cfg);
+    if (!faster.empty())
+        std::printf("  [A+] assumed, faster than the published facts (docs/isa.md 2.2): %s\n",
+                    faster.c_str());
     std::printf(
         "  wall: %.3f s (%s), %.2f Mcycles/s simulated, modeled/wall = %.2f; golden %.2f "
         "ms\n",
@@ -418,15 +518,18 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     nlohmann::json ph = nlohmann::json::object();
     for (const auto& [name, cyc] : r.phases) ph[name] = cyc;
     j["phases"] = ph;
+    j["relayout"] = {{"in_cycles", r.relayout_in},
+                     {"in_lower_bound", r.relayout_bound_in},
+                     {"out_cycles", r.relayout_out},
+                     {"out_lower_bound", r.relayout_bound_out}};
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
     nlohmann::json prm;
     prm["algorithm"] = algo_params_json(p);
     prm["algorithm"]["roi"] = {roi.x0, roi.y0, roi.w, roi.h};
-    nlohmann::json mach = nlohmann::json::object();
-    for (const isa::ParamInfo& pi : cfg.list()) mach[pi.name] = pi.value;
-    prm["machine"] = mach;
+    prm["machine"] = machine_params_json(cfg);
+    prm["machine_info"] = machine_param_info_json(cfg);
     prm["firmware"] = {{"words", run.program_words},
                        {"local_bytes_per_pe", run.plan.mem_needed},
                        {"external_bytes_per_pe", run.plan.ext_needed},
@@ -434,6 +537,9 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
                        {"segments", run.plan.nseg},
                        {"split_input_relayout", run.plan.split_in},
                        {"seed_col_resolved", run.plan.f.s}};
+    nlohmann::json pb = nlohmann::json::object();
+    for (const auto& [i, val] : fw::param_block(run.plan)) pb[std::to_string(i)] = val;
+    prm["firmware"]["param_block"] = pb;
     j["params"] = prm;
     return j;
 }

@@ -2,6 +2,8 @@
 // subcommands that run the machine (run, and later stream, sweep, bench).
 #pragma once
 
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,14 +33,14 @@ imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
 // --model rtl / lockstep options (docs/rtl.md). set_rtl_flags() hands them
 // to run_model (kept out of its signature).
 struct RtlFlags {
-    std::string inject_fault;     // INSTR:PE:REG:MASK
-    std::string mutant;           // planted bug (mutation-check configuration)
+    std::string inject_fault;  // INSTR:PE:REG:MASK
+    std::string mutant;        // planted bug (mutation-check configuration)
     std::string lockstep_waves = "rtl_divergence.vcd";  // waves before a divergence, "" none
 };
 void add_rtl_flags(CLI::App* app, RtlFlags& f);
 void set_rtl_flags(const RtlFlags& f);
 
-std::string model_names();                  // "tlm, core" ...
+std::string model_names();  // "tlm, core" ...
 // The RTL design's synthesized area (cells per PE and per CP), one line;
 // nothing when the binary has no RTL.
 void print_rtl_area();
@@ -48,6 +50,8 @@ struct ModelRun {
     std::string model;
     imap::firmware::FramePlan plan;
     size_t program_words = 0;
+    imap::isa::Program program;  // the program that ran
+    std::string source;          // its generated source (constants, plan macros, .include of dp.s)
     imap::firmware::FrameResult result;
 };
 
@@ -58,6 +62,29 @@ struct WaveFlags {
     double limit_mb = 200;
 };
 void add_wave_flags(CLI::App* app, WaveFlags& f);
+// Checks, before the run, that the VCD and its .gtkw view can be written
+// (UserError naming the file otherwise); nothing when --vcd is not given.
+void check_wave_outputs(const WaveFlags& f);
+
+// The waves of one run: builds the tracer for `f` (nothing without --vcd),
+// and after the run finishes the files and prints where they went, with a
+// warning when the trace holds nothing (window past the end) or the .gtkw
+// could not be written (the VCD is kept). UserError for bad options.
+class WaveSession {
+  public:
+    WaveSession(const WaveFlags& f, const imap::isa::MachineConfig& cfg,
+                const imap::isa::Program& prog);
+    ~WaveSession();
+    WaveSession(const WaveSession&) = delete;
+    WaveSession& operator=(const WaveSession&) = delete;
+    bool active() const;
+    imap::isa::Observer* observer();  // ISA-level tracer (core, tlm), or nullptr
+    void finish(uint64_t end_cycle);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 // Plans, assembles and runs the firmware on `model`. Plan errors (does not
 // fit) are UserError (exit 2); machine faults are UserError with kExitFault.

@@ -102,7 +102,7 @@ Scene load_scene(const std::string& dir, double gt_scale_override, int ndisp_ove
         sc.gt_scale = *cat.gt_scale;
     else
         throw InputError("scene folder '" + dir + "': ground-truth scale unknown (" + where +
-                         "); give it explicitly (imapsim eval: --gt-scale)");
+                         "); give it explicitly with --gt-scale");
     if (!(sc.gt_scale > 0))
         throw InputError("scene folder '" + dir + "': gt_scale must be positive");
     if (ndisp_override > 0)
@@ -111,7 +111,7 @@ Scene load_scene(const std::string& dir, double gt_scale_override, int ndisp_ove
         sc.ndisp = *cat.ndisp;
     else
         throw InputError("scene folder '" + dir + "': number of disparities unknown (" + where +
-                         "); give it explicitly (imapsim eval: --D)");
+                         "); give it explicitly with --D");
     if (sc.ndisp < 1) throw InputError("scene folder '" + dir + "': ndisp must be at least 1");
 
     const fs::path d(dir);

@@ -60,6 +60,21 @@ BadScores score_bad(const cv::Mat& disp, double disp_scale, const Scene& sc, dou
     return {pct(bad[0], total[0]), pct(bad[1], total[1]), pct(bad[2], total[2])};
 }
 
+BadScores score_bad_roi(const golden::DisparityMap& m, const Scene& sc, const golden::Roi& roi,
+                        double delta) {
+    const cv::Rect r(roi.x0, roi.y0, roi.w, roi.h);
+    if (m.width != roi.w || m.height != roi.h || r.x < 0 || r.y < 0 || r.x + r.width > sc.gt.cols ||
+        r.y + r.height > sc.gt.rows)
+        throw InputError("scene '" + sc.name + "': the map or the ROI does not fit the scene");
+    Scene c = sc;
+    c.gt = sc.gt(r).clone();
+    c.nonocc = sc.nonocc(r).clone();
+    c.all = sc.all(r).clone();
+    c.disc = sc.disc(r).clone();
+    const cv::Mat disp(m.height, m.width, CV_8UC1, const_cast<uint8_t*>(m.data.data()));
+    return score_bad(disp, 1.0, c, delta);
+}
+
 double bad_percent_roi(const golden::DisparityMap& m, const cv::Mat& gt, const golden::Roi& roi,
                        int delta) {
     if (m.data.empty()) return 0;

@@ -54,6 +54,16 @@ void GtkwSave::add_signal(const std::string& full_name, Format fmt, const std::s
     names_.push_back(full_name);
 }
 
+void GtkwSave::add_vector(const std::string& name,
+                          const std::vector<std::pair<int, std::string>>& bits, Format fmt) {
+    if (bits.empty()) throw WaveError("gtkw: vector '" + name + "' without bits");
+    flags(static_cast<uint32_t>(fmt) | (closed_depth_ > 0 ? kCollapsed : 0));
+    std::string l = "#{" + name + "}";
+    for (const auto& [bit, parent] : bits) l += " (" + std::to_string(bit) + ")" + parent;
+    lines_.push_back(l);
+    names_.push_back(name);
+}
+
 void GtkwSave::add_blank() {
     flags(kBlank);
     lines_.push_back("-");

@@ -43,11 +43,17 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
     const int addr_bits = bits_for(cfg.mem_bytes > 0 ? cfg.mem_bytes - 1 : 0);
     const int pc_bits = bits_for(prog.code.empty() ? 0 : prog.code.size() - 1);
 
+    if (sel_.regs) detail::check_groups(sel_, nregs_);
+
     w_.push_scope("top");
     w_.push_scope("cp");
     if (sel_.cp) {
+        // The machine cycle as a number (time = cycle x clock period).
+        cycle_ = w_.add_wire("cycle", bits_for(cfg.watchdog_cycles));
         phase_ = w_.add_text("phase", kPhaseChars);
         pc_ = w_.add_wire("pc", pc_bits);
+        op_ = w_.add_text("op", detail::kOpChars);
+        args_ = w_.add_text("args", detail::kArgsChars);
         instr_ = w_.add_text("instr", kInstrChars);
         for (int i = 0; i < isa::kCpRegs; ++i)
             creg_.push_back(w_.add_wire("c" + std::to_string(i), 32));
@@ -66,8 +72,13 @@ IsaTracer::IsaTracer(const std::string& vcd_path, const isa::MachineConfig& cfg,
     if (sel_.cp || sel_.mask) {
         g_.begin_group("CP");
         if (sel_.cp) {
+            g_.add_signal(w_.full_name(cycle_), Format::Dec);
             g_.add_signal(w_.full_name(phase_), Format::Ascii);
             g_.add_signal(w_.full_name(pc_), Format::Hex);
+            // The mnemonic fits one cycle at the opening zoom; the
+            // operands and the whole text need a closer zoom.
+            g_.add_signal(w_.full_name(op_), Format::Ascii);
+            g_.add_signal(w_.full_name(args_), Format::Ascii);
             g_.add_signal(w_.full_name(instr_), Format::Ascii);
         }
         if (sel_.mask) {
@@ -127,7 +138,10 @@ void IsaTracer::on_instruction(const isa::Machine& m, const isa::TraceEvent& e) 
     }
     const uint32_t ph = m.current_phase();
     if (sel_.cp) {
+        w_.change(cycle_, e.cycle_before);
         w_.change(pc_, e.pc);
+        w_.change_text(op_, disasm_.mnemonic(e.pc));
+        w_.change_text(args_, disasm_.operands(e.pc));
         w_.change_text(instr_, disasm_.text(e.pc));
         if (ph != last_phase_) w_.change_text(phase_, prog_.phase_name(ph));
     }
@@ -168,7 +182,14 @@ void IsaTracer::on_instruction(const isa::Machine& m, const isa::TraceEvent& e) 
             }
         }
     }
+    // The cycle counter counts every cycle of a multi-cycle instruction.
+    if (sel_.cp)
+        for (uint64_t c = e.cycle_before + 1; c < e.cycle_after && !w_.limit_reached(); ++c) {
+            w_.set_time(c * clk_.period);
+            w_.change(cycle_, c);
+        }
     w_.set_time(ta);
+    if (sel_.cp) w_.change(cycle_, e.cycle_after);
     for (const detail::PeSignals& s : pes_) {
         if (sel_.mem) w_.change(s.we, 0);
         if (sel_.ring) w_.change(s.ring_we, 0);
@@ -187,14 +208,13 @@ void IsaTracer::finish(uint64_t end_cycle) {
                                                           1, kViewCycles * clk_.period)
                                    : 1;
     g_.set_view(first_time_, span);
+    done_ = true;
+    // The VCD is complete: a view that cannot be written does not cost it.
     try {
         g_.write(gtkw_path());
-    } catch (...) {
-        std::remove(path_.c_str());
-        done_ = true;
-        throw;
+    } catch (const WaveError& e) {
+        gtkw_error_ = e.what();
     }
-    done_ = true;
 }
 
 }  // namespace imap::waves

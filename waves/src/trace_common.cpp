@@ -75,6 +75,30 @@ const std::string& DisasmCache::text(uint32_t pc) {
     return text_[pc];
 }
 
+std::string DisasmCache::mnemonic(uint32_t pc) {
+    const std::string& t = text(pc);
+    const size_t sp = t.find(' ');
+    return sp == std::string::npos ? t : t.substr(0, sp);
+}
+
+std::string DisasmCache::operands(uint32_t pc) {
+    const std::string& t = text(pc);
+    const size_t sp = t.find(' ');
+    return sp == std::string::npos ? std::string() : t.substr(sp + 1);
+}
+
+void check_groups(const TraceSelection& sel, int nregs) {
+    for (const RegisterGroup& grp : sel.groups) {
+        if (grp.name.empty() || grp.regs.empty() || grp.regs.size() > 8)
+            throw WaveError("register group '" + grp.name + "': needs a name and 1..8 registers");
+        for (const int r : grp.regs)
+            if (r < 0 || r >= nregs)
+                throw WaveError("register group '" + grp.name + "': register r" +
+                                std::to_string(r) + " is not traced (r0..r" +
+                                std::to_string(nregs - 1) + ")");
+    }
+}
+
 PeSignals declare_pe(VcdWriter& w, const TraceSelection& sel, int pe, int pes, int nregs,
                      int addr_bits, int ext_bits) {
     PeSignals s;
@@ -126,6 +150,17 @@ void view_pe(GtkwSave& g, const VcdWriter& w, const TraceSelection& sel, const P
     if (sel.regs) {
         g.add_signal(w.full_name(s.c), Format::Bin);
         g.add_signal(w.full_name(s.t), Format::Bin);
+        // Multi-byte values as one decimal number each: the bytes of the
+        // group's registers, highest register first, bit 7 first.
+        for (const RegisterGroup& grp : sel.groups) {
+            std::vector<std::pair<int, std::string>> bits;
+            for (auto r = grp.regs.rbegin(); r != grp.regs.rend(); ++r)
+                for (int b = 0; b < 8; ++b) bits.emplace_back(b, w.full_name(s.r[*r]));
+            const std::string& first_name = w.full_name(s.r[grp.regs.front()]);
+            const std::string prefix = first_name.substr(0, first_name.rfind('.') + 1);
+            g.add_vector(prefix + grp.name + "[" + std::to_string(8 * grp.regs.size() - 1) + ":0]",
+                         bits, Format::Dec);
+        }
         g.begin_group(name + " registers", !first);
         for (const SignalId r : s.r) g.add_signal(w.full_name(r), Format::Hex);
         g.end_group();

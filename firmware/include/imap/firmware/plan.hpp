@@ -1,9 +1,14 @@
-// Host side of the DP firmware: the per-PE memory plan for a parameter set,
-// the range checks that make 24-bit costs exact, and assembly of the
-// firmware with the plan's constants (docs/firmware.md).
+// Host side of the DP firmware: the range checks that make the 16-bit
+// wrap-around costs exact, the per-column schedule of the forward pass, the
+// per-PE memory plan (pointer columns on chip, in the dead part of the line
+// buffers, or spilled to the external memory), the batch table, the
+// re-layout geometry and its lower bound, and the assembly of the firmware
+// with a generated prelude of constants and per-column macro calls
+// (docs/firmware.md).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -24,37 +29,87 @@ class FirmwareError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-inline constexpr int64_t kInf = int64_t{1} << 23;  // unreachable cost
+// Accepted cost range (docs/firmware.md, section 2): every compared pair of
+// candidates differs by at most max(Wm_max, Wo + Wd), which must stay below
+// half the 16-bit range.
+inline constexpr int64_t kMaxSpread = 32766;
 
-// Memory plan of the forward pass for one scanline length N.
+// One pass of the forward pass over column k: slots jlo .. jlo + n - 1 of
+// every PE of `kind` (-1: all kinds at once).
+struct ForwardPass {
+    int k = 0;
+    int kind = -1;
+    int jlo = 0, n = 0;
+    bool donly = false;  // the first slot has only its D source
+    bool pad = false;    // the last slot is level D-1: write the pad after the pass
+    int addr = 0;        // local address of the pass's pointer bytes (or of the staging area)
+    int bytes = 0;       // ceil(n / 4)
+};
+
+// Where the pointer bytes of column k of a kind are during the backtrack.
+struct PointerColumn {
+    int addr = -1;        // local address
+    int base = 0;         // level of the first slot (pointer of level j: slot j - base)
+    int bytes = 0;        // bytes holding this kind's pointers
+    int ext = -1;         // external address if the column was spilled, else -1
+};
+
+// A block transfer: spill after pass `after` (xst) or reload after the
+// forward pass (xld).
+struct Transfer {
+    int local = 0, ext = 0, len = 0, after = -1;
+};
+
+// Forward-pass plan of one scanline length N (shared by all lines).
 struct ForwardPlan {
     int N = 0, D = 0;
     bool bidir = false;
-    int s = 0;     // seed column (bidir)
-    int ds = -1;   // seed disparity, -1 = free
-    int kmax = 0;  // columns computed after the start column
-    int dq = 0;    // packed pointer bytes per column = ceil(D / 4)
-    int imgr = 0, imgl = 0, c0 = 0, c1 = 0, c2 = 0, pbuf = 0;  // local addresses
-    int vbuf = 0, kbase = 0;
-    int map = 0;             // output line: reuses the line buffers after the forward pass
-    int mem_needed = 0;      // bytes of local memory per PE
-    int64_t ext_needed = 0;  // bytes of external memory per PE
+    int s = 0;       // seed column (bidir)
+    int ds = -1;     // seed disparity, -1 = free
+    int kinds = 1;   // 1 (single) or 2 (bidir: 0 = left wavefront, 1 = right)
+    int K[2] = {0, 0};                    // last column of each kind
+    int kmax = 0;                         // max(K)
+    std::vector<int> lo[2], hi[2];        // level range of each kind at columns 0..K
+    std::vector<ForwardPass> passes;      // in execution order
+    std::vector<PointerColumn> ptr[2];    // per kind, columns 0..kmax (0 unused)
+    std::vector<Transfer> spills, reloads;
+    int64_t valid_states = 0;             // valid states of one line (both kinds)
+    int64_t slots = 0;                    // slots the passes compute (per PE)
+    // Constants of the node (docs/firmware.md, section 2).
+    int xo = 0, xm = 0, xd = 0;           // forcing offsets
+    int kpp = 0;                          // kb*gb - Wd - Wo (16-bit two's complement)
+    // Memory (local addresses per PE).
+    int kblk = 0;                         // per-PE constant block
+    int rb = 0, kr = 0, kl = 0;           // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i (i <= kl)
+    int costl = 0, costh = 0;             // cost planes (levels 0..D, D = pad)
+    int preg = 0;                         // start of the pointer region
+    int map = 0;                          // output line (N bytes) during the backtrack and after
+    int mem_needed = 0;
+    int64_t ext_needed = 0;
+    // 2 to 5 PEs with the vote across batches: one line per batch, pointer
+    // tables in three rotating external slots of ext_table bytes, the
+    // backtrack's own and neighbour columns reloaded into tiny_buf.
+    bool tiny = false;
+    int ext_table = 0;
+    int tiny_buf[3] = {0, 0, 0};
+
+    int rp_addr(int i) const { return rb - i; }
+    int lp_addr(int i) const { return rb + 1 + i; }
+    // Level range of line buffer L' used by kind `kind` of the DP (for tests).
+    // Pointer of state (k, j) of a kind as the golden encodes it (M 0, D 1,
+    // O 2), read through `mem` (local memory) or `ext` (external memory) of
+    // one PE at the end of the forward pass.
+    uint8_t pointer(int kind, int k, int j, const std::function<uint8_t(uint32_t)>& mem,
+                    const std::function<uint8_t(uint32_t)>& ext) const;
 };
 
-// Checks the cost range (24-bit exactness) and plans the memory; throws
+// Checks the cost range and plans the forward pass and its memory for
+// scanlines of length N (lines on consecutive PEs, the test layout); throws
 // FirmwareError when the set does not fit `cfg`.
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg);
 
 // Folder of the firmware sources.
 std::string firmware_dir();
-
-// Assembles the stand-alone forward-pass program for a plan.
-isa::Program assemble_forward(const golden::Params& p, const ForwardPlan& plan);
-
-// Assembles `file` (in firmware_dir()) with the plan's constants, the
-// algorithm's (FRAME, VOTE) and `extra` (e.g. HROI, HB).
-isa::Program assemble(const golden::Params& p, const ForwardPlan& plan, const std::string& file,
-                      const std::map<std::string, int64_t>& extra);
 
 // One batch of ROI lines processed together (lines first .. first+lines-1,
 // of which out_count starting at batch line out_first are written out).
@@ -62,16 +117,27 @@ struct Batch {
     int first = 0, lines = 0, out_first = 0, out_count = 0;
 };
 
+// Re-layout geometry (docs/firmware.md, section 5).
+struct Relayout {
+    bool modular = false;  // the lines fill the ring: routes take the shorter way round
+    int base = 0;          // unrolled position of the first line's first PE
+    int ur = 0, ul = 0;    // rounds of the rightward / leftward sweeps (input)
+    int our = 0, oul = 0;  // rounds of the rightward / leftward sweeps (output)
+    int64_t bound_in = 0, bound_out = 0;  // lower bound of the ring cycles, summed over batches
+    int64_t hop_bound_in = 0, hop_bound_out = 0;  // the hop part of it (byte-hops / P)
+};
+
 // Everything the full firmware (dp.s) needs for one frame.
 struct FramePlan {
     ForwardPlan f;
     golden::Roi roi;
     int P = 0;
-    int lpb = 0;                    // lines per batch (P/2 bidir, P single)
+    int lpb = 0;                    // lines per batch
     int hbmax = 0;                  // most lines in one batch
     int nseg = 0;                   // segments of P pixels per ROI line
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
+    Relayout rl;
     std::vector<Batch> batches;
     int mem_needed = 0;      // local bytes per PE
     int64_t ext_needed = 0;  // external bytes per PE
@@ -80,15 +146,45 @@ struct FramePlan {
 inline constexpr int kMaxBatches = 62;  // batch table in the param block
 
 // Plans a frame: the forward plan, batches (overlapping by one line at inner
-// edges when the vote is on), video rows, memory. FirmwareError when the
-// set cannot run on `cfg` (what is needed vs available).
+// edges when the vote is on), video rows, memory, re-layout. FirmwareError
+// when the set cannot run on `cfg` (what is needed vs available).
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg);
+
+// Lower bound of the re-layout's ring cycles of a frame plan (docs/firmware.md,
+// section 5): per batch and segment the larger of the byte-hop bound (every
+// needed byte must cross its links, P bytes move one hop per cycle) and the
+// cut bound (one byte per cycle enters any arc of the ring), in and out.
+void relayout_bound(const FramePlan& plan, int64_t* in, int64_t* out, int64_t* hop_in = nullptr,
+                    int64_t* hop_out = nullptr);
+
+// The generated prelude of a frame plan: .equ constants and the PLAN_*
+// macros (per-column calls of the forward pass, spills, reloads, backtrack
+// columns), then `.include` of dp.s. Assembling this text is the firmware
+// the frame runs.
+std::string frame_source(const golden::Params& p, const FramePlan& plan);
 
 // Assembles dp.s for a frame plan.
 isa::Program assemble_frame(const golden::Params& p, const FramePlan& plan);
 
-// The param block words of a frame plan (index, value).
+// Assembles a test program (dp_forward_test.s, dp_core_test.s) for a
+// forward plan with lines on PEs 2y / 2y+1 (bidir) or y (single) and HB lines.
+isa::Program assemble_test(const golden::Params& p, const ForwardPlan& plan,
+                           const std::string& file, int lines, int P);
+
+// The param block words of a frame plan (index, value): set before the run
+// (imapsim exec --param INDEX=VALUE).
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& plan);
+
+// Registers that the firmware uses together as one multi-byte value (a
+// cost), low byte first: the waves' GTKWave view shows each group as one
+// decimal vector (docs/waves.md). `phase` names the phase where the group
+// holds that value (the registers are reused elsewhere).
+struct WaveGroup {
+    std::string name;       // e.g. "fwd_run"
+    std::string phase;      // e.g. "forward"
+    std::vector<int> regs;  // PE registers, low byte first
+};
+const std::vector<WaveGroup>& wave_groups();
 
 }  // namespace imap::firmware

@@ -19,7 +19,14 @@ struct FrameResult {
     std::vector<std::pair<std::string, uint64_t>> phases;  // name, cycles (non-zero only)
     isa::Stats stats;
     double wall_s = 0;
+    // Re-layout: measured cycles of the phases relayout_in / relayout_out and
+    // the lower bound of the plan (FramePlan::rl, docs/firmware.md section 5).
+    uint64_t relayout_in = 0, relayout_out = 0;
+    int64_t relayout_bound_in = 0, relayout_bound_out = 0;
 };
+
+// Fills the re-layout fields of a result from its phases and the plan.
+void set_relayout_figures(const FramePlan& plan, FrameResult& r);
 
 // Phase table of a finished machine (names from the program, zero phases
 // left out).

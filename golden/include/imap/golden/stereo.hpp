@@ -48,6 +48,10 @@ struct Event {
 //            seed, kM at the seed / every level when free, kNone below);
 //            `left` holds fp(i,j) for sites -1..s-1 (site s-1: kO below a
 //            fixed seed, kM at the seed / every level when free, kNone above).
+//  - joint : `right` holds bp(i,j) for sites 0..s (forward from column -1),
+//            `left` holds fp(i,j) for sites s..N-1 (cost-to-go to (N-1,0);
+//            site N-1: kM at level 0), `js` the meeting level at site s and
+//            right_cost the whole line's optimum E(s,js) + G(s,js).
 // The O steps down to a fixed seed (right) are recorded as O events before
 // the seed's M event; only M events reach the output maps.
 // Entry (i, j) of a table with first site f is at [(i - f) * D + j]; invalid
@@ -58,20 +62,28 @@ struct LineTables {
     int s = 0;    // seed column (bidir) or 0 (single)
     int ds = -1;  // seed disparity, -1 = free (bidir)
     bool bidir = false;
+    bool joint = false;   // SPEC A.9 joint mode (see below)
     int right_first = 0;  // first site stored in `right`
+    int left_first = -1;  // first site stored in `left`
+    int js = -1;          // joint: the meeting level at site s
     std::vector<uint8_t> right;
     std::vector<uint8_t> left;  // sites -1..s-1 (bidir only)
     int64_t right_cost = 0;     // E(N-1, 0)
     int64_t left_cost = 0;      // G(-1, 0) (bidir only)
 
     uint8_t bp(int i, int j) const { return right[static_cast<size_t>(i - right_first) * D + j]; }
-    uint8_t fp(int i, int j) const { return left[static_cast<size_t>(i + 1) * D + j]; }
+    uint8_t fp(int i, int j) const { return left[static_cast<size_t>(i - left_first) * D + j]; }
 };
 
 // Forward pass(es) of one scanline: L and R point at the ROI's first pixel of
 // the left and right rows (N pixels each; the left row is read at i + j).
 // Parameters must have passed validate_for_width(p, N).
 void forward_line(const Params& p, const uint8_t* L, const uint8_t* R, int N, LineTables& out);
+
+// The same with the match cost of state (i, j) read from cost[i * p.D + j]
+// (SPEC A.9: a CostVolume line, or any table of N * D costs, each at most
+// window_terms(p) * pixel_cost_max(p)).
+void forward_line_cost(const Params& p, const int64_t* cost, int N, LineTables& out);
 
 // Voted pointer of SPEC A.5 for `self` at state (i, j) of the right (bp) or
 // left (fp) table; `above`/`below` are the neighbouring lines or nullptr.

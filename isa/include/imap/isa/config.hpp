@@ -98,6 +98,11 @@ struct MachineConfig {
     double seconds(uint64_t cycles) const {
         return static_cast<double>(cycles) / (clock_mhz * 1e6);
     }
+    // ... in milliseconds, with one rounding (cycles / (clock_mhz x 1000)),
+    // so 288878 cycles at 40 MHz are 7.22195 ms, not 7.2219500000000005.
+    double milliseconds(uint64_t cycles) const {
+        return static_cast<double>(cycles) / (clock_mhz * 1e3);
+    }
 };
 
 }  // namespace imap::isa

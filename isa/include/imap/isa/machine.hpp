@@ -1,10 +1,14 @@
 // The executor: PE array state kept as lanes (structure of arrays), the
-// control processor, and a run loop that makes one indirect call per
-// instruction. Shared by the TLM model, the RTL model (as reference) and the
-// tools; no SystemC here.
+// control processor, and a run loop that executes straight-line runs of
+// decoded instructions (one indirect call each, statistics once per run).
+// The lane handlers exist once per SIMD path (baseline x86-64, AVX2,
+// AVX-512), chosen at run time by the CPU; every path gives the same state.
+// Shared by the TLM model, the RTL model (as reference) and the tools; no
+// SystemC here.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -93,6 +97,24 @@ class ImageVideoPort : public VideoPort {
 
 class Machine;
 
+// The vector instruction set the lane handlers are compiled for. Every path
+// computes exactly the same state (tests/isa/test_simd_paths.cpp runs each
+// one this CPU supports against Generic); they differ only in speed.
+enum class SimdPath : uint8_t {
+    Generic,  // baseline x86-64 (SSE2), or the compiler's default elsewhere
+    Avx2,     // x86-64 with AVX2
+    Avx512,   // x86-64 with AVX-512 F/BW/VL
+};
+const char* to_string(SimdPath p);
+// Paths this CPU can run, Generic first.
+std::vector<SimdPath> supported_simd_paths();
+// The path a new Machine uses: the environment variable IMAP_ISA_SIMD
+// (generic, avx2, avx512; a path the CPU cannot run is refused with
+// std::runtime_error) or else the widest supported one.
+SimdPath default_simd_path();
+// Parses a path name (as to_string); std::invalid_argument naming the choices.
+SimdPath simd_path_from_string(const std::string& name);
+
 // Called after every instruction when attached (VCD, lockstep, profiling).
 struct TraceEvent {
     uint32_t pc;            // PC of the instruction just executed
@@ -120,10 +142,12 @@ struct RunResult {
 };
 
 // A decoded instruction: built once at load, executed by one indirect call.
+// fn[0] honours the mask M, fn[1] is the same instruction for a machine
+// whose PEs are all active (M = 1 everywhere: no blend).
 struct Decoded;
 using Handler = void (*)(Machine&, const Decoded&);
 struct Decoded {
-    Handler fn = nullptr;
+    Handler fn[2] = {nullptr, nullptr};
     uint64_t cost = 0;             // fixed cycles (variable parts are added by the handler)
     uint32_t d = 0, a = 0, b = 0;  // lane offsets of PE registers, or CP register numbers
     int32_t imm = 0;
@@ -159,6 +183,11 @@ class Machine {
     // M = 1 everywhere, PC = 0. Keeps the program and the param block.
     void reset();
 
+    // The SIMD path of the lane handlers (default_simd_path() at
+    // construction); std::invalid_argument for one this CPU cannot run.
+    void set_simd_path(SimdPath p);
+    SimdPath simd_path() const { return simd_; }
+
     void set_video(VideoPort* v) { video_ = v; }
     // Optional components for the shift ring and the status reduction
     // (interconnect.hpp); nullptr (the default) = the built-in code. Same
@@ -179,16 +208,20 @@ class Machine {
     bool halted() const { return halted_; }
     uint32_t pc() const { return pc_; }
     uint64_t cycles() const { return cycles_; }
-    const Stats& stats() const { return stats_; }
+    // A snapshot of the statistics, refreshed by every call (the run loop
+    // keeps per-run counters; this call adds them up, O(program size)).
+    const Stats& stats() const;
     // Cycles per phase id (index = Program::phases index).
     const std::vector<uint64_t>& phase_cycles() const { return phase_cycles_; }
     uint32_t current_phase() const { return phase_; }
 
     // ---- PE lanes (P bytes each, PE p at index p; flags and mask are 0/1) ----
-    // Writable for testbenches and debuggers; values other than 0/1 in C, T or
-    // M are not allowed, and host writes to M are not seen by active_pes().
-    const uint8_t* reg_lanes(int r) const { return lanes_.data() + lane_off(r); }
-    uint8_t* reg_lanes(int r) { return lanes_.data() + lane_off(r); }
+    // Writable for testbenches and debuggers between run() / step() calls;
+    // values other than 0/1 in C, T or M are not allowed, and host writes to
+    // M are not seen by active_pes(). The rows of different registers are not
+    // adjacent (each row is padded to a multiple of 64 bytes).
+    const uint8_t* reg_lanes(int r) const { return lanes_ + lane_off(r); }
+    uint8_t* reg_lanes(int r) { return lanes_ + lane_off(r); }
     const uint8_t* carry_lanes() const { return c_; }
     const uint8_t* test_lanes() const { return t_; }
     const uint8_t* mask_lanes() const { return m_; }
@@ -203,10 +236,16 @@ class Machine {
     void set_reg(int pe, int r, uint8_t v);
 
     // ---- memories: address-major, byte (pe, addr) at [addr * P + pe] ----
-    uint8_t* mem_data() { return mem_.data(); }
-    const uint8_t* mem_data() const { return mem_.data(); }
-    uint8_t* ext_data() { return ext_.data(); }
-    const uint8_t* ext_data() const { return ext_.data(); }
+    uint8_t* mem_data() { return mem_; }
+    const uint8_t* mem_data() const { return mem_; }
+    // The machine clears on reset() only the external memory it knows was
+    // written (xst, ext_write); once a writable pointer has been handed out
+    // here it clears all of it on every reset.
+    uint8_t* ext_data() {
+        ext_all_dirty_ = true;
+        return ext_;
+    }
+    const uint8_t* ext_data() const { return ext_; }
     uint8_t mem_read(int pe, uint32_t addr) const;  // std::out_of_range on bad pe/addr
     void mem_write(int pe, uint32_t addr, uint8_t v);
     uint8_t ext_read(int pe, uint32_t addr) const;
@@ -223,23 +262,59 @@ class Machine {
   private:
     friend struct Exec;
 
+    // The straight-line run that starts at a PC: up to and including the
+    // next instruction that ends a run (control flow, phase, mask, xld / xst,
+    // video, the end sentinel). Only that last instruction can change the
+    // PC flow, the phase, the mask or add variable cycles.
+    struct RunInfo {
+        uint32_t end = 0;        // PC of the last instruction
+        uint32_t len = 0;        // instructions
+        uint64_t pe_cycles = 0;  // fixed cycles of its PE-work instructions
+    };
+    // A zero-initialised heap block (calloc: untouched pages stay unmapped).
+    struct Block {
+        uint8_t* p = nullptr;
+        Block() = default;
+        Block(const Block&) = delete;
+        Block& operator=(const Block&) = delete;
+        ~Block();
+        uint8_t* alloc(size_t n, size_t align);
+    };
+
     size_t lane_off(int r) const;
     template <bool Traced>
     RunResult run_loop(uint64_t max_cycles);
     template <bool Traced>
     void exec_one();
+    void exec_run(uint32_t start, uint64_t limit);
+    void book_partial_run(uint32_t start, uint32_t stop, uint64_t start_cycles, uint64_t active,
+                          uint32_t phase);
     [[noreturn]] void fault(const std::string& msg, int64_t pe = Fault::kNone,
                             int64_t address = Fault::kNone) const;
     void recount_active();
+    void refresh_full();
+    void bind_handlers();
+    void note_ext_write(size_t lo, size_t hi) {
+        if (lo < ext_lo_) ext_lo_ = lo;
+        if (hi > ext_hi_) ext_hi_ = hi;
+    }
 
     MachineConfig cfg_;
     int P_;
+    size_t S_;  // lane row stride: P rounded up to a multiple of 64
     size_t NR_;
-    std::vector<uint8_t> lanes_;  // regs | C | T | M | mask stack | pidx bytes | scratch
-    uint8_t *c_, *t_, *m_, *mstack_, *pidx_, *scratch_;
-    std::vector<uint8_t> mem_, ext_;
+    Block lane_block_, mem_block_, ext_block_;
+    uint8_t* lanes_ = nullptr;  // regs | C | T | M | mask stack | pidx | zero | scratch | lane_no
+    uint8_t *c_, *t_, *m_, *mstack_, *pidx_, *zero_, *scratch_;
+    uint32_t* lane_no_;                      // lane_no_[p] = p
+    uint8_t* mem_ = nullptr;                 // mem_bytes * P (+ 64 bytes of slack for row loads)
+    uint8_t* ext_ = nullptr;                 // ext_bytes * P
+    size_t ext_lo_ = SIZE_MAX, ext_hi_ = 0;  // bytes of ext_ written since the last reset
+    bool ext_all_dirty_ = false;
     int msp_ = 0;
     int active_ = 0;
+    bool full_ = true;  // M = 1 on every PE (fn[1] may be used)
+    SimdPath simd_ = SimdPath::Generic;
 
     std::array<uint32_t, kCpRegs + 1> creg_{};  // [16] is always 0 (absolute addresses)
     std::array<uint32_t, kParamWords> params_{};
@@ -248,13 +323,21 @@ class Machine {
 
     Program prog_;
     std::vector<Decoded> code_;  // + a sentinel that faults when the PC runs off the end
+    std::vector<RunInfo> runs_;  // by start PC (code_.size() entries)
     uint32_t pc_ = 0, next_pc_ = 0;
     uint64_t extra_ = 0;
     bool halted_ = false;
     uint64_t cycles_ = 0;
     uint32_t phase_ = 0;
     std::vector<uint64_t> phase_cycles_;
-    Stats stats_;
+
+    // Statistics as the run loop keeps them: executions by PC as a
+    // difference array (a run from s to e adds 1 at s, -1 at e + 1), the
+    // variable cycles by cost class, and the running totals.
+    std::vector<int64_t> exec_diff_;
+    std::array<uint64_t, kCostClassCount> class_extra_{};
+    uint64_t instructions_ = 0, pe_cycles_ = 0, active_lane_cycles_ = 0;
+    mutable Stats stats_;
 
     VideoPort* video_ = nullptr;
     Observer* observer_ = nullptr;

@@ -59,7 +59,8 @@ struct RtlWaves {
     // groups: "cp", "array", "board", "pe" (empty = all)
     std::vector<std::string> groups;
     // Verilator's dumpvars prefixes for this selection (under `top`, the
-    // model's SystemC name).
+    // model's SystemC name); a prefix ending in '!' selects that scope's own
+    // signals only, not the units below it.
     std::vector<std::string> scopes(const std::string& top, int pes_total) const;
     void validate(const isa::MachineConfig& cfg) const;
 };
@@ -89,8 +90,7 @@ bool has_configuration(const isa::MachineConfig& cfg);
 // holds (registers, mask and return stacks, the transfer path's rows per
 // cycle, program size, phases). `needs_waves`: a traced variant is needed.
 void check_runnable(const isa::MachineConfig& cfg, bool needs_waves = false,
-                    bool needs_mutants = false, size_t program_words = 0,
-                    size_t phases = 0);
+                    bool needs_mutants = false, size_t program_words = 0, size_t phases = 0);
 // The command that adds the configuration of cfg to a build.
 std::string build_command(const isa::MachineConfig& cfg, bool traced = false);
 

@@ -23,9 +23,9 @@ namespace imap::rtl {
 struct GenOptions {
     int pes = 8;
     uint32_t mem_bytes = 1024, ext_bytes = 65536;
-    int blocks = 40;          // top-level blocks per program
-    bool vary_costs = true;   // a random cost table per program (some keep the defaults)
-    int fault_percent = 8;    // programs that end in a deliberate machine fault
+    int blocks = 40;         // top-level blocks per program
+    bool vary_costs = true;  // a random cost table per program (some keep the defaults)
+    int fault_percent = 20;  // programs that end in a deliberate machine fault (one of ten kinds)
 };
 
 struct RandomProgram {
@@ -66,7 +66,7 @@ struct SuiteOptions {
     uint64_t seed = 1;
     int programs = 300;
     GenOptions gen;
-    std::string mutant;          // planted bug (mutation-check model), "" = none
+    std::string mutant;  // planted bug (mutation-check model), "" = none
     bool stop_at_divergence = false;
 };
 

@@ -67,6 +67,11 @@ struct FrameRecord {
     size_t differing = 0;  // pixels that differ from the golden
     double bad1 = -1;      // % of ROI pixels > 1 off the ground truth (if known), else -1
     double wall_s = 0;     // host time spent on this frame (model + golden + checks)
+    // Of wall_s: the model (Cp::start to done: reset, the program under the
+    // SystemC kernel, the camera lines that arrive meanwhile) and the one
+    // golden::compute of the bit-exactness check (not the ground-truth score).
+    double model_wall_s = 0;
+    double golden_wall_s = 0;
     std::vector<std::pair<std::string, uint64_t>> phases;
 };
 

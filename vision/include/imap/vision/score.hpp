@@ -22,6 +22,11 @@ struct BadScores {
 // out pixels of unknown disparity.
 BadScores score_bad(const cv::Mat& disp, double disp_scale, const Scene& sc, double delta = 1.0);
 
+// score_bad of an ROI-sized LEFT-frame map (disparities, scale 1) over the
+// ROI of the scene: ground truth and masks are taken inside the ROI only.
+BadScores score_bad_roi(const golden::DisparityMap& m, const Scene& sc, const golden::Roi& roi,
+                        double delta = 1.0);
+
 // Share (0..100) of the pixels of an ROI-sized LEFT-frame map whose disparity
 // differs from the ground truth by more than `delta` levels; gt is the
 // whole-image CV_8UC1 ground truth (gt_scale 1), sampled at the ROI.

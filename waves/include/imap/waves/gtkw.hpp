@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace imap::waves {
@@ -38,6 +39,12 @@ class GtkwSave {
     // A signal by its full name (VcdWriter::full_name), with a data format
     // and an optional alias shown instead of the name.
     void add_signal(const std::string& full_name, Format fmt, const std::string& alias = "");
+    // A vector GTKWave combines from bits of other signals ("Edit > Combine
+    // Down"), shown as one value: `bits` lists (bit index, full name of the
+    // vector it belongs to), most significant first; GTKWave numbers the
+    // bits of a vector "x[7:0]" from 0 = bit 7 to 7 = bit 0.
+    void add_vector(const std::string& name, const std::vector<std::pair<int, std::string>>& bits,
+                    Format fmt);
     // An empty separator row / a comment row.
     void add_blank();
     void add_comment(const std::string& text);

@@ -20,10 +20,19 @@ namespace imap::waves {
 // Measured on the headline forward pass (docs/waves.md): VCD bytes per traced
 // PE and machine cycle with all groups on, and the CP part per cycle. Used for
 // the size estimate that warns before a large trace.
-inline constexpr double kBytesPerPeCycle = 8.2;
-inline constexpr double kCpBytesPerCycle = 145.0;
+inline constexpr double kBytesPerPeCycle = 7.6;
+inline constexpr double kCpBytesPerCycle = 245.0;
 
-// What to trace. Groups: cp (PC, instruction text, phase, c0..c15, cycle),
+// Registers that hold one multi-byte value (low byte first), shown in the
+// .gtkw view of each PE as one combined decimal vector `name` (the VCD keeps
+// the byte registers). The firmware declares its groups
+// (imap::firmware::wave_groups()); the tracer knows nothing of their meaning.
+struct RegisterGroup {
+    std::string name;
+    std::vector<int> regs;  // PE registers, low byte first
+};
+
+// What to trace. Groups: cp (cycle, PC, instruction text, phase, c0..c15),
 // ring (per PE: ring strobe and received byte), mask (per PE: M; CP: mask
 // stack depth and active PEs), mem (per PE: write strobe, address, data),
 // regs (per PE: r0..r15, C, T).
@@ -34,6 +43,7 @@ struct TraceSelection {
     bool cp = true, ring = true, mask = true, mem = true, regs = true;
     uint64_t limit_bytes = 200ull << 20;  // hard stop; 0 = none
     std::string limit_name = "--trace-limit-mb 200";
+    std::vector<RegisterGroup> groups;  // combined vectors in the view (regs group)
 };
 
 // Parses the imapsim options (empty string = default) into a selection.
@@ -51,7 +61,9 @@ TraceSelection parse_trace_selection(const std::string& pes, const std::string& 
 // The observer. Declares the signals and opens the VCD on construction
 // (WaveError when the file cannot be created); finish() writes the last
 // values, renames the VCD into place and writes the .gtkw next to it (same
-// name with the extension replaced by .gtkw). Destroyed without finish(): no
+// name with the extension replaced by .gtkw). A finished VCD is kept when
+// the .gtkw cannot be written: finish() then returns normally and
+// gtkw_error() says why (the caller warns). Destroyed without finish(): no
 // files are left.
 class IsaTracer : public isa::Observer {
   public:
@@ -68,6 +80,8 @@ class IsaTracer : public isa::Observer {
     uint64_t bytes() const { return w_.bytes_written(); }
     bool limit_reached() const { return w_.limit_reached(); }
     uint64_t traced_instructions() const { return traced_; }
+    // After finish(): why the .gtkw view could not be written ("" = it was).
+    const std::string& gtkw_error() const { return gtkw_error_; }
     // Estimated VCD size for the selection over `cycles` machine cycles.
     static double estimate_bytes(const TraceSelection& sel, uint64_t cycles);
 
@@ -82,7 +96,8 @@ class IsaTracer : public isa::Observer {
     VcdWriter w_;
     GtkwSave g_;
     int nregs_ = 16;
-    SignalId pc_ = 0, instr_ = 0, phase_ = 0, cycle_ = 0, msp_ = 0, active_ = 0;
+    SignalId pc_ = 0, instr_ = 0, op_ = 0, args_ = 0, phase_ = 0, cycle_ = 0, msp_ = 0, active_ = 0;
+    std::string gtkw_error_;
     std::vector<SignalId> creg_;
     std::vector<detail::PeSignals> pes_;
     detail::DisasmCache disasm_;

@@ -20,6 +20,8 @@ struct TraceSelection;
 namespace detail {
 
 inline constexpr int kInstrChars = 32;  // width of the ASCII instruction signal
+inline constexpr int kOpChars = 8;      // ... of the mnemonic
+inline constexpr int kArgsChars = 24;   // ... of the operands
 inline constexpr int kPhaseChars = 16;  // width of the ASCII phase signal
 
 // Bits needed to hold values 0..max_value (at least 1).
@@ -38,6 +40,9 @@ class DisasmCache {
   public:
     explicit DisasmCache(const isa::Program& prog);
     const std::string& text(uint32_t pc);  // "" for a PC outside the program
+    // The mnemonic ("ld") and the operands ("r13, [c2 + 80]") of text(pc).
+    std::string mnemonic(uint32_t pc);
+    std::string operands(uint32_t pc);
 
   private:
     const isa::Program& prog_;
@@ -59,6 +64,9 @@ PeSignals declare_pe(VcdWriter& w, const TraceSelection& sel, int pe, int pes, i
 // The PE's group in the view (its registers folded except for the first PE).
 void view_pe(GtkwSave& g, const VcdWriter& w, const TraceSelection& sel, const PeSignals& s,
              bool ext, bool first);
+// The selection's register groups that this trace can show (every register
+// traced); WaveError naming the group otherwise.
+void check_groups(const TraceSelection& sel, int nregs);
 
 }  // namespace detail
 }  // namespace imap::waves
