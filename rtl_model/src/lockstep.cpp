@@ -24,8 +24,9 @@ std::string Divergence::message() const {
 void LockstepConfig::validate(const isa::MachineConfig& cfg) const {
     rtl.validate(cfg);
     if (!rtl.waves.path.empty())
-        throw isa::ConfigError("lockstep: waves of the design are written on a divergence only "
-                               "(trace the models one at a time)");
+        throw isa::ConfigError(
+            "lockstep: waves of the design are written on a divergence only "
+            "(trace the models one at a time)");
     if (waves_cycles == 0 || waves_cycles > 100000000)
         throw isa::ConfigError("lockstep: waves_cycles = " + std::to_string(waves_cycles) +
                                " out of range (1..100000000)");
@@ -82,9 +83,15 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
         rres = collect(j, bench, cfg, prog);
         if (!chk.diverged) return;
         if (!replay) {
-            chk.div.waves = wpath.empty() ? "" : "no waves: configuration " + std::string(ci.name) +
-                                                     " has no traced variant (build one: " +
-                                                     build_command(cfg, true) + ")";
+            if (wpath.empty())
+                chk.div.waves = "";
+            else if (!lcfg.rtl.mutant.empty())
+                // a traced variant would replay the design without the bug
+                chk.div.waves = "no waves: the mutation-check model has no traced variant";
+            else
+                chk.div.waves = "no waves: configuration " + std::string(ci.name) +
+                                " has no traced variant (build one: " + build_command(cfg, true) +
+                                ")";
             return;
         }
         j.waves_path = wpath;
@@ -97,12 +104,13 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     };
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);
     if (chk.diverged && job.waves_written) {
-        finish_waves(job, bench, cfg, "replay",
-                     chk.div.pe >= 0 ? std::vector<int>{static_cast<int>(chk.div.pe)}
-                                     : std::vector<int>{});
+        finish_waves(
+            job, bench, cfg, "replay",
+            chk.div.pe >= 0 ? std::vector<int>{static_cast<int>(chk.div.pe)} : std::vector<int>{});
         chk.div.waves = "waves of machine cycles " + std::to_string(job.waves_t0) + ".." +
                         std::to_string(job.waves_t1) + " -> " + wpath;
     }
