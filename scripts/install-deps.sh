@@ -14,6 +14,11 @@ PACKAGES=(
   verilator               # the RTL design verilated into SystemC models (rtl_model/, 5.006)
   yosys                   # generic-gate synthesis of the PE and the CP (area figures, 0.23)
   valgrind                # memcheck test of a TLM run (scripts/valgrind.sh, CTest valgrind.tlm_run)
+  gnuplot-nox             # sweep plots (pngcairo and svg terminals; docs/whatif.md)
+  fonts-dejavu-core       # a font for gnuplot's cairo terminals
+  munge                   # Slurm authentication (the private test cluster runs its own munged)
+  slurmctld slurmd        # Slurm 22.05 controller and node daemons (CTest engine.slurm, docs/cluster.md)
+  slurm-client            # sbatch, squeue, scancel, sacct: the Slurm executor
 )
 
 missing=()

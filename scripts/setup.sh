@@ -39,6 +39,9 @@ case "$mode" in
     ;;
   build) ;;
   test)
+    # engine.slurm starts (and stops) its own single-node Slurm cluster with
+    # the packages above (scripts/slurm-test-cluster.sh); its daemons need root.
+    [ "$(id -u)" -eq 0 ] || echo "warning: not root: the Slurm test (engine.slurm) will fail" >&2
     echo "== Release test suite"
     ctest --test-dir build --output-on-failure -j "$jobs"
     fuzz_figures build

@@ -51,15 +51,22 @@ FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,
     m.set_observer(observer);
     const auto t0 = std::chrono::steady_clock::now();
     m.run();
+    isa::ModelRun run = isa::model_run_of(m);
+    run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return frame_result(plan, prog, run, std::move(video.output[0].pixels));
+}
+
+FrameResult frame_result(const FramePlan& plan, const isa::Program& prog, const isa::ModelRun& run,
+                         std::vector<uint8_t> pixels) {
     FrameResult r;
-    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.cycles = m.cycles();
-    r.modeled_ms = cfg.milliseconds(r.cycles);
-    r.phases = phase_table(m);
-    r.stats = m.stats();
+    r.cycles = run.cycles;
+    r.modeled_ms = run.modeled_ms;
+    r.wall_s = run.wall_s;
+    r.phases = phase_table(prog, run.phase_cycles);
+    r.stats = run.stats;
     r.map.width = plan.roi.w;
     r.map.height = plan.roi.h;
-    r.map.data = video.output[0].pixels;
+    r.map.data = std::move(pixels);
     set_relayout_figures(plan, r);
     return r;
 }

@@ -209,6 +209,9 @@ BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
     BOOST_TEST_INFO(t.out);
     BOOST_REQUIRE(t.code == 0);
     BOOST_TEST(fs::exists(p("t.png")));
+    // drawn by gnuplot, with its script and data beside it
+    BOOST_TEST(fs::exists(p("t.gp")));
+    BOOST_TEST(fs::exists(p("t.dat")));
     const auto rows = read_json(p("t.json"));
     bool quality = false, paper = false, sgbm = false;
     for (const auto& r : rows) {

@@ -144,7 +144,7 @@ BOOST_AUTO_TEST_CASE(failing_cases_are_reported) {
     BOOST_TEST(count(x, "<failure ") == 3u);
     BOOST_TEST(x.find("expected 1") != std::string::npos);
     BOOST_TEST(x.find("expected an input error (exit 2), got exit 0") != std::string::npos);
-    BOOST_TEST(x.find("input error (exit 2): error: parameter D = 99") != std::string::npos);
+    BOOST_TEST(x.find("input error (exit 2): parameter D = 99") != std::string::npos);
     const nlohmann::json s = nlohmann::json::parse(slurp(js));
     BOOST_TEST(s["failed"] == 3);
     BOOST_TEST(s["cases"][0]["passed"] == true);
@@ -159,6 +159,32 @@ BOOST_AUTO_TEST_CASE(failing_cases_are_reported) {
     // The failing run's log is kept and named in the report.
     BOOST_TEST(fs::exists(d / "work"));
     BOOST_TEST(x.find((d / "work").string()) != std::string::npos);
+}
+
+// A passing suite with a temporary run folder removes it: then neither the
+// output nor the JUnit report may name anything in it (issue: the report
+// pointed at logs that were deleted).
+BOOST_AUTO_TEST_CASE(reports_name_only_what_is_kept) {
+    const fs::path d = tmpdir();
+    const fs::path xml = d / "kept.xml", js = d / "kept.json";
+    const Result r = run("regress --filter edge-pes8 --models core --junit " + xml.string() +
+                         " --json " + js.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    const std::string tmp = (fs::temp_directory_path() / "imapsim-regress-").string();
+    for (const std::string& text : {r.out, slurp(xml), slurp(js)}) {
+        for (size_t p = text.find(tmp); p != std::string::npos; p = text.find(tmp, p + 1)) {
+            const size_t e = text.find_first_of(" \n\"<'", p);
+            const std::string path = text.substr(p, e == std::string::npos ? e : e - p);
+            BOOST_TEST_INFO("named: " << path);
+            BOOST_TEST(fs::exists(path));
+        }
+    }
+    // The reproduction command is in the report: it runs as it stands.
+    const nlohmann::json s = nlohmann::json::parse(slurp(js));
+    const std::string cmd = s["cases"][0]["runs"]["core"]["command"].get<std::string>();
+    BOOST_TEST(cmd.find("--report") == std::string::npos);
+    BOOST_TEST(cmd.find(" run --model core") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(missing_scene_data_fails_the_case) {

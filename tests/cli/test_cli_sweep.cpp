@@ -10,7 +10,9 @@
 
 #include <boost/test/unit_test.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -194,14 +196,135 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
     BOOST_TEST(j.at("fixed").at("roi_size") == "32x16");
     BOOST_TEST(j.at("swept").size() == 2u);
 
-    // Plot: a readable image of the requested size.
+    // Plot (gnuplot): a readable image of the requested size, not blank; its
+    // script and data beside it, the data holding the two points that ran.
     const cv::Mat img = cv::imread(png.string(), cv::IMREAD_COLOR);
     BOOST_REQUIRE(!img.empty());
     BOOST_TEST(img.cols == 640);
     BOOST_TEST(img.rows == 480);
-    // not blank: some pixels differ from the white background
     const cv::Mat ink = img.reshape(1) != 255;
     BOOST_TEST(cv::countNonZero(ink) > 1000);
+    const std::string gp = slurp(d / "small.gp"), dat = slurp(d / "small.dat");
+    BOOST_TEST(gp.find("small.dat") != std::string::npos);
+    BOOST_TEST(gp.find("pngcairo size 640,480") != std::string::npos);
+    size_t data_lines = 0;
+    std::istringstream dl(dat);
+    for (std::string line; std::getline(dl, line);) data_lines += !line.empty() && line[0] != '#';
+    BOOST_TEST(data_lines == 2u);
+    // Every ran row names its dominant phase, one of the phase columns.
+    for (const auto& row : rows)
+        if (row.at("status") == "ok") {
+            const std::string ph = row.at("dominant_phase");
+            BOOST_TEST_INFO("dominant " << ph);
+            BOOST_TEST(row.count("phase_" + ph) == 1u);
+            for (const auto& [k, val] : row)
+                if (k.rfind("phase_", 0) == 0)
+                    BOOST_TEST(std::stoull(val) <= std::stoull(row.at("phase_" + ph)));
+        }
+}
+
+BOOST_AUTO_TEST_CASE(svg_plot_and_gnuplot_script_redraws) {
+    const fs::path d = tmpdir() / "svg";
+    fs::create_directories(d);
+    const Result r = run("sweep --model core --roi-size 32x16 --D 8 --pes 8,16 --plot " +
+                         (d / "p.svg").string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    const std::string svg = slurp(d / "p.svg");
+    BOOST_TEST(svg.find("<svg") != std::string::npos);
+    BOOST_TEST(svg.find("</svg>") != std::string::npos);
+    // The script beside it redraws the plot on its own (into another name).
+    const std::string cmd = "cd " + d.string() + " && gnuplot -e \"outfile='again.png'\" p.gp 2>&1";
+    BOOST_TEST(std::system(cmd.c_str()) == 0);
+    BOOST_TEST(cv::imread((d / "again.png").string()).cols == 900);
+    // A plot name gnuplot cannot draw is refused before the sweep.
+    const Result bad = run("sweep --dry-run --pes 8,16 --plot " + (d / "p.jpg").string());
+    BOOST_TEST(bad.code == 2);
+    BOOST_TEST(bad.out.find(".png or .svg") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(nothing_runs_exit_5) {
+    // Every point does not fit: no point ran, which is exit 5 and said so.
+    const fs::path d = tmpdir();
+    const Result r =
+        run("sweep --model core --roi-size 32x16 --D 8 --pes 3,4 --mem-bytes 40,60 "
+            "--csv " +
+            (d / "none.csv").string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 5);
+    BOOST_TEST(r.out.find("0 ran") != std::string::npos);
+    BOOST_TEST(r.out.find("nothing ran") != std::string::npos);
+    const auto rows = records(parse_csv(slurp(d / "none.csv")));
+    BOOST_TEST(rows.size() == 4u);
+    // With --dry-run, no point fitting is the same answer.
+    const Result dry = run("sweep --dry-run --roi-size 32x16 --D 8 --mem-bytes 40,60");
+    BOOST_TEST_INFO(dry.out);
+    BOOST_TEST(dry.code == 5);
+    BOOST_TEST(dry.out.find("nothing fits") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(resume_of_a_local_run_refuses_slurm_options) {
+    // A local run folder resumed with a Slurm option would silently run
+    // locally and ignore it: refused, before anything runs.
+    const fs::path d = tmpdir();
+    const fs::path rd = d / "rundir";
+    const Result first =
+        run("sweep --roi-size 32x16 --D 8 --pes 8 --keep --run-dir " + rd.string());
+    BOOST_TEST_INFO(first.out);
+    BOOST_REQUIRE_EQUAL(first.code, 0);
+    const Result again = run("sweep --resume " + rd.string() + " --partition debug");
+    BOOST_TEST_INFO(again.out);
+    BOOST_TEST(again.code == 2);
+    BOOST_TEST(again.out.find("need --executor slurm") != std::string::npos);
+    BOOST_TEST(again.out.find("executor is local") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(knee_is_found_and_explained) {
+    // 64 -> 128 PEs on a 128-wide ROI: the DP phases stop shrinking; whatever
+    // the firmware's cycle counts, the curve's slope changes there or not, and
+    // a reported knee names the phases on both sides.
+    const fs::path d = tmpdir();
+    const fs::path js = d / "knee.json";
+    const Result r =
+        run("sweep --model core --roi-size 128x16 --D 16 --pes 16..512*2 -j 2 --json " +
+            js.string() + " --plot " + (d / "knee.png").string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    std::ifstream in(js);
+    const json j = json::parse(in);
+    // Recompute the slopes from the rows and compare with what was reported.
+    std::vector<std::pair<double, double>> pts;
+    for (const auto& row : j.at("rows"))
+        pts.push_back({std::stod(row.at("point").at("pes").get<std::string>()),
+                       row.at("modeled_ms").get<double>()});
+    BOOST_REQUIRE_EQUAL(pts.size(), 6u);
+    double best = 0;
+    size_t at = 0;
+    for (size_t i = 1; i + 1 < pts.size(); ++i) {
+        const double s0 =
+            std::log(pts[i].second / pts[i - 1].second) / std::log(pts[i].first / pts[i - 1].first);
+        const double s1 =
+            std::log(pts[i + 1].second / pts[i].second) / std::log(pts[i + 1].first / pts[i].first);
+        if (std::fabs(s1 - s0) > std::fabs(best)) {
+            best = s1 - s0;
+            at = i;
+        }
+    }
+    const json& knees = j.at("knees");
+    if (std::fabs(best) >= 0.5) {
+        BOOST_REQUIRE_EQUAL(knees.size(), 1u);
+        const json& k = knees[0];
+        BOOST_TEST(k.at("at").get<std::string>() ==
+                   std::to_string(static_cast<int>(pts[at].first)));
+        const std::string e = k.at("explanation").get<std::string>();
+        BOOST_TEST(e.find("knee at pes=") == 0u);
+        BOOST_TEST(e.find(k.at("phase_after").get<std::string>()) != std::string::npos);
+        BOOST_TEST(r.out.find(e) != std::string::npos);  // printed with the summary
+        // and written on the plot
+        BOOST_TEST(slurp(d / "knee.gp").find("knee: ") != std::string::npos);
+    } else {
+        BOOST_TEST(knees.empty());
+    }
 }
 
 BOOST_AUTO_TEST_CASE(range_syntax) {
@@ -288,7 +411,7 @@ BOOST_AUTO_TEST_CASE(failing_point_is_an_error_row_exit_5) {
     const fs::path logs = r.out.substr(k + key.size(), r.out.find('\n', k) - k - key.size());
     BOOST_TEST(fs::is_directory(logs));
     bool fault_logged = false;
-    for (const auto& e : fs::directory_iterator(logs))
+    for (const auto& e : fs::recursive_directory_iterator(logs))
         if (e.path().extension() == ".log")
             fault_logged |= slurp(e.path()).find("watchdog") != std::string::npos;
     BOOST_TEST(fault_logged);
@@ -304,7 +427,8 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_REQUIRE_EQUAL(r.code, 0);
     const Csv c = parse_csv(slurp(csv));
     BOOST_REQUIRE(!c.empty());
-    BOOST_TEST((c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles"}));
+    BOOST_TEST(
+        (c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles", "dominant_phase"}));
     // The paper's grid: widths 32/64/128, D 16/32/64/128 with D <= width.
     std::set<std::pair<int, int>> want;
     for (int w : {32, 64, 128})
@@ -314,7 +438,8 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     std::set<std::pair<int, int>> got;
     uint64_t headline = 0;
     for (size_t i = 1; i < c.size(); ++i) {
-        BOOST_REQUIRE_EQUAL(c[i].size(), 4u);
+        BOOST_REQUIRE_EQUAL(c[i].size(), 5u);
+        BOOST_TEST(!c[i][4].empty());
         const int w = std::stoi(c[i][0]), dd = std::stoi(c[i][1]);
         got.insert({w, dd});
         const uint64_t cyc = std::stoull(c[i][3]);

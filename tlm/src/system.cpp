@@ -44,11 +44,7 @@ void TlmSystem::rethrow_if_faulted() const {
 TlmRunResult TlmSystem::result() const {
     const isa::Machine& m = cp.machine();
     TlmRunResult r;
-    r.halted = m.halted();
-    r.cycles = m.cycles();
-    r.modeled_ms = m.config().milliseconds(m.cycles());
-    r.phase_cycles = m.phase_cycles();
-    r.stats = m.stats();
+    static_cast<isa::ModelRun&>(r) = isa::model_run_of(m);
     r.ring = ring.stats();
     r.maskbus = maskbus.stats();
     for (isa::Op o : {isa::Op::MIF, isa::Op::MELSE, isa::Op::MEND, isa::Op::MALL})

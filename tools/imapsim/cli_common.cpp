@@ -68,6 +68,22 @@ void require_creatable(const std::string& flag, const std::string& path,
 
 }  // namespace
 
+void check_same_size(const std::string& left, int lw, int lh, const std::string& right, int rw,
+                     int rh) {
+    if (lw == rw && lh == rh) return;
+    throw UserError("left and right images differ in size: " + left + " is " + std::to_string(lw) +
+                    "x" + std::to_string(lh) + ", " + right + " is " + std::to_string(rw) + "x" +
+                    std::to_string(rh));
+}
+
+void validate_frame(const imap::golden::Params& p, const imap::golden::Roi& roi, int w, int h) {
+    try {
+        imap::golden::validate(p, roi, w, h);
+    } catch (const imap::golden::ParamError& e) {
+        throw UserError(e.what());
+    }
+}
+
 void check_output_file(const std::string& flag, const std::string& path, bool image) {
     namespace fs = std::filesystem;
     if (path.empty()) return;
@@ -130,41 +146,6 @@ bool file_in_folder(const std::string& path, const std::string& dir) {
     if (path.empty() || dir.empty()) return false;
     const auto norm = [](const fs::path& q) { return (fs::absolute(q) / "").lexically_normal(); };
     return norm(folder_of(path)) == norm(dir);
-}
-
-nlohmann::json param_value_json(const imap::isa::ParamInfo& p) {
-    const std::string& v = p.value;
-    if (v == "on" || v == "true") return true;
-    if (v == "off" || v == "false") return false;
-    if (!v.empty()) {
-        errno = 0;
-        char* end = nullptr;
-        const long long i = std::strtoll(v.c_str(), &end, 10);
-        if (errno == 0 && end != v.c_str() && *end == '\0') return i;
-        errno = 0;
-        const unsigned long long u = std::strtoull(v.c_str(), &end, 10);
-        if (errno == 0 && end != v.c_str() && *end == '\0' && v[0] != '-') return u;
-        errno = 0;
-        const double d = std::strtod(v.c_str(), &end);
-        if (errno == 0 && end != v.c_str() && *end == '\0' && std::isfinite(d)) return d;
-    }
-    return v;  // not a number: kept as text
-}
-
-nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const imap::isa::ParamInfo& p : cfg.list()) j[p.name] = param_value_json(p);
-    return j;
-}
-
-nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const imap::isa::ParamInfo& p : cfg.list())
-        j[p.name] = {{"assumption", p.assumption},
-                     {"faster", p.faster},
-                     {"unit", p.unit},
-                     {"group", p.group}};
-    return j;
 }
 
 std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "imap/engine/params_json.hpp"
 #include "imap/golden/params.hpp"
 #include "imap/isa/config.hpp"
 
@@ -69,15 +70,10 @@ imap::golden::Params parse_algo_flags(const AlgoFlags& f, imap::golden::Roi* roi
 // The algorithm parameters as a JSON object (reports).
 nlohmann::json algo_params_json(const imap::golden::Params& p);
 
-// One machine parameter's value as JSON: a number (integer or real), or a
-// boolean for an on/off switch (isa::ParamInfo::value is text).
-nlohmann::json param_value_json(const imap::isa::ParamInfo& p);
-// Every machine and cost parameter of `cfg`, name -> value (param_value_json).
-nlohmann::json machine_params_json(const imap::isa::MachineConfig& cfg);
-// Per parameter: {"assumption": bool, "faster": bool, "unit", "group"}
-// (docs/isa.md 2.2: an assumption is [A], one that makes the machine faster
-// than the published facts [A+]).
-nlohmann::json machine_param_info_json(const imap::isa::MachineConfig& cfg);
+// The machine parameters' JSON (engine library, one form for every report).
+using imap::engine::machine_param_info_json;
+using imap::engine::machine_params_json;
+using imap::engine::param_value_json;
 // The [A+] parameters as "name value unit" items joined by ", ".
 std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg);
 
@@ -95,6 +91,14 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
 // read-only file system), and it is not a folder; with `image`, OpenCV can
 // write its extension. UserError (exit 2) otherwise; nothing when empty.
 void check_output_file(const std::string& flag, const std::string& path, bool image);
+
+// A stereo pair's two images must have one size: UserError naming both files
+// and their sizes otherwise.
+void check_same_size(const std::string& left, int lw, int lh, const std::string& right, int rw,
+                     int rh);
+
+// golden::validate with its ParamError as a UserError (exit 2).
+void validate_frame(const imap::golden::Params& p, const imap::golden::Roi& roi, int w, int h);
 
 // The same for an output folder (`--out-dir`): it is a folder or can be
 // created, and files can be created in it.
@@ -133,5 +137,6 @@ Subcommand register_bench(CLI::App& app);
 Subcommand register_stream(CLI::App& app);
 Subcommand register_sweep(CLI::App& app);
 Subcommand register_table1(CLI::App& app);
+Subcommand register_run_task(CLI::App& app);
 
 }  // namespace imapsim

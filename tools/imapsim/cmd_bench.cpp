@@ -45,6 +45,7 @@ struct ModelTimes {
     double modeled_ms = 0;
     std::vector<double> wall_s;
     nlohmann::json phases;
+    nlohmann::json relayout;  // measured re-layout cycles and the plan's lower bound
 };
 
 // Runs `imapsim run --model M --report F` (the headline case is run's
@@ -70,6 +71,7 @@ ModelTimes time_model(const std::string& model, int runs) {
         t.modeled_ms = j.at("modeled_ms").get<double>();
         t.wall_s.push_back(j.at("wall_s").get<double>());
         t.phases = j.at("phases");
+        t.relayout = j.at("relayout");
     }
     std::filesystem::remove(rep);
     t.available = true;
@@ -201,6 +203,19 @@ Subcommand register_bench(CLI::App& app) {
             std::printf("  cycles per DP node/PE   %10.1f      (%lld DP nodes, %.0f per PE)\n",
                         static_cast<double>(tlm.cycles) / per_pe, static_cast<long long>(nodes),
                         per_pe);
+            // Issue targets of the firmware: the forward pass per valid state
+            // and per PE, and the re-layout against the ring's lower bound.
+            const double fwd = tlm.phases.value("forward", 0.0);
+            const double rl_in = tlm.relayout.value("in_cycles", 0.0);
+            const double rl_out = tlm.relayout.value("out_cycles", 0.0);
+            const double bd_in = tlm.relayout.value("in_lower_bound", 0.0);
+            const double bd_out = tlm.relayout.value("out_lower_bound", 0.0);
+            std::printf("  forward cycles/state/PE %10.1f      (forward phase %.0f cycles)\n",
+                        fwd / per_pe, fwd);
+            std::printf("  re-layout in            %10.0f      (ring lower bound %.0f: %.2fx)\n",
+                        rl_in, bd_in, bd_in > 0 ? rl_in / bd_in : 0.0);
+            std::printf("  re-layout out           %10.0f      (ring lower bound %.0f: %.2fx)\n",
+                        rl_out, bd_out, bd_out > 0 ? rl_out / bd_out : 0.0);
             std::printf("  TLM wall                %10.4f s    (median)\n", tlm_wall);
             std::printf("  TLM modeled/wall        %10.2f      (>= 1: faster than the board)\n",
                         realtime);
@@ -257,6 +272,8 @@ Subcommand register_bench(CLI::App& app) {
                 j["golden_ms"] = golden_ms;
                 j["tlm_over_golden"] = tlm_wall * 1e3 / golden_ms;
                 j["phases"] = tlm.phases;
+                j["forward_cycles_per_state"] = fwd / per_pe;
+                j["relayout"] = tlm.relayout;
                 j["runs"] = o->runs;
                 j["simd_path"] = imap::isa::to_string(imap::isa::default_simd_path());
                 if (st.available) {

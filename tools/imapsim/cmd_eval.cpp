@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "imap/engine/plot.hpp"
 #include "imap/firmware/plan.hpp"
 #include "imap/firmware/run.hpp"
 #include "imap/golden/estimate.hpp"
@@ -18,12 +19,12 @@
 #include "imap/vision/scene.hpp"
 #include "imap/vision/score.hpp"
 #include "imap/vision/synth.hpp"
-#include "plot.hpp"
 
 namespace imapsim {
 
 namespace g = imap::golden;
 namespace v = imap::vision;
+namespace plot = imap::engine::plot;
 using nlohmann::json;
 
 namespace {
@@ -222,7 +223,7 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
         f.note = "video rate: 40 ms";
         f.width = 1000;
         f.height = 650;
-        v::write_image_atomic(o.plot, plot::render(f));
+        plot::write_plot(f, o.plot);  // with its gnuplot script and data beside it
     }
     if (!o.json.empty()) {
         json arr = json::array();
@@ -448,7 +449,10 @@ Subcommand register_eval(CLI::App& app) {
                 matchers = {m};
 
             check_output_file("--json", o->json, false);  // fail before the work, not after it
-            check_output_file("--plot", o->plot, true);
+            if (!o->plot.empty()) {
+                plot::check_plot_path("--plot", o->plot);
+                check_output_file("--plot", o->plot, false);
+            }
 
             const std::vector<std::string> dirs =
                 o->all.empty() ? std::vector<std::string>{o->scene} : v::list_scene_dirs(o->all);

@@ -314,12 +314,9 @@ Subcommand register_exec(CLI::App& app) {
             check_wave_outputs(o->waves);
             const isa::ImageVideoPort::Image left = read_input(o->left, "left image");
             const isa::ImageVideoPort::Image right = read_input(o->right, "right image");
-            if (!o->left.empty() && !o->right.empty() &&
-                (left.width != right.width || left.height != right.height))
-                throw UserError("left and right images differ in size: " + o->left + " is " +
-                                std::to_string(left.width) + "x" + std::to_string(left.height) +
-                                ", " + o->right + " is " + std::to_string(right.width) + "x" +
-                                std::to_string(right.height));
+            if (!o->left.empty() && !o->right.empty())
+                check_same_size(o->left, left.width, left.height, o->right, right.width,
+                                right.height);
             const isa::ImageVideoPort::Image& shape = o->left.empty() ? right : left;
             int out_w = shape.width, out_h = shape.height;
             if (!o->out_size.empty()) {

@@ -39,17 +39,9 @@ Subcommand register_golden(CLI::App& app) {
                 check_output_file("--out-color", o->out_color, true);
                 const cv::Mat L = v::load_grey8(o->left, "left image");
                 const cv::Mat R = v::load_grey8(o->right, "right image");
-                if (L.size() != R.size())
-                    throw UserError("left and right images differ in size: " + o->left + " is " +
-                                    std::to_string(L.cols) + "x" + std::to_string(L.rows) + ", " +
-                                    o->right + " is " + std::to_string(R.cols) + "x" +
-                                    std::to_string(R.rows));
+                check_same_size(o->left, L.cols, L.rows, o->right, R.cols, R.rows);
                 if (!has_roi) roi = {0, 0, L.cols, L.rows};
-                try {
-                    g::validate(p, roi, L.cols, L.rows);
-                } catch (const g::ParamError& e) {
-                    throw UserError(e.what());
-                }
+                validate_frame(p, roi, L.cols, L.rows);
                 const auto t0 = std::chrono::steady_clock::now();
                 const g::DisparityMap m =
                     g::compute(p, v::view_of(L), v::view_of(R), roi, o->algo.fill);

@@ -218,17 +218,9 @@ Subcommand register_run(CLI::App& app) {
                     has_roi = true;
                 }
             }
-            if (L.size() != R.size())
-                throw UserError("left and right images differ in size: " + o->left + " is " +
-                                std::to_string(L.cols) + "x" + std::to_string(L.rows) + ", " +
-                                o->right + " is " + std::to_string(R.cols) + "x" +
-                                std::to_string(R.rows));
+            check_same_size(o->left, L.cols, L.rows, o->right, R.cols, R.rows);
             if (!has_roi) roi = {0, 0, L.cols, L.rows};
-            try {
-                g::validate(p, roi, L.cols, L.rows);
-            } catch (const g::ParamError& e) {
-                throw UserError(e.what());
-            }
+            validate_frame(p, roi, L.cols, L.rows);
             const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
 
             std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",

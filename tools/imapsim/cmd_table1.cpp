@@ -1,18 +1,22 @@
 // imapsim table1: the paper's grid on the modeled board (docs/whatif.md):
 // 256 PEs at 40 MHz, ROI height 128, widths 32/64/128, D in 16/32/64/128
 // with D <= width, the synthetic scene of width x 128. Runs on the sweep
-// engine; prints modeled ms per cell with the paper's 85 ms beside the
-// headline cell (128 wide, D = 64).
+// engine (any executor); prints modeled ms per cell with the paper's 85 ms
+// beside the headline cell (128 wide, D = 64).
 #include <cstdio>
 #include <memory>
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "engine_cli.hpp"
+#include "imap/engine/sweep.hpp"
 #include "imap/vision/image_io.hpp"
 #include "model_runner.hpp"
-#include "sweep_engine.hpp"
 
 namespace imapsim {
+
+namespace sw = imap::engine::sweep;
+using imap::engine::fmt;
 
 namespace {
 
@@ -22,9 +26,10 @@ constexpr int kHeight = 128;
 constexpr double kPaperHeadlineMs = 85.0;  // Kraft & Jonker's figure on the IMAP-VISION board
 
 struct Table1Options {
-    std::string csv, json, jobs;
+    std::string csv, json;
     std::string model = kDefaultModel;
     uint64_t seed = 1;
+    ExecFlags exec;
 };
 
 }  // namespace
@@ -35,49 +40,68 @@ Subcommand register_table1(CLI::App& app) {
         "table1",
         "The paper's grid on the modeled board: 256 PEs, 40 MHz, ROI height 128, widths "
         "32/64/128, D 16/32/64/128 (D <= width); modeled ms per cell (docs/whatif.md)");
-    sub->add_option("--csv", o->csv, "write width,D,modeled_ms,cycles here");
+    sub->add_option("--csv", o->csv, "write width,D,modeled_ms,cycles,dominant_phase here");
     sub->add_option("--json", o->json, "write every cell (cycles, phases, status) as JSON here");
     sub->add_option("--model", o->model, "model to run: " + model_names())->capture_default_str();
-    sub->add_option("-j,--jobs", o->jobs, "cells run in parallel [default: one per core]");
     sub->add_option("--seed", o->seed, "synthetic scene seed")->capture_default_str();
+    add_exec_flags(sub, o->exec, "cells");
 
-    return {sub, [o]() {
-                check_model_name(o->model);
+    return {sub, [o, sub]() {
                 check_output_file("--csv", o->csv, false);
                 check_output_file("--json", o->json, false);
-                sweep::Spec s;
-                s.command = "table1";
-                s.model = o->model;
-                s.input.seed = o->seed;
-                if (!o->jobs.empty())
-                    s.jobs = static_cast<unsigned>(parse_int_flag("-j", o->jobs, 1, 1024));
-                std::string widths, levels;
-                for (int w : kWidths)
-                    widths += (widths.empty() ? "" : ",") + std::to_string(w) + "x" +
-                              std::to_string(kHeight);
-                for (int d : kLevels) levels += (levels.empty() ? "" : ",") + std::to_string(d);
-                s.fixed = {sweep::make_axis("pes", "--pes", "256"),
-                           sweep::make_axis("clock_mhz", "--clock-mhz", "40")};
-                s.swept = {sweep::make_axis("roi_size", "--roi-size", widths),
-                           sweep::make_axis("D", "--D", levels)};
-                for (size_t wi = 0; wi < std::size(kWidths); ++wi)
-                    for (size_t di = 0; di < std::size(kLevels); ++di)
-                        if (kLevels[di] <= kWidths[wi]) s.points.push_back({wi, di});
-
-                const sweep::Result r = sweep::run(s);
+                check_exec_flags(o->exec);
+                sw::Plan plan;
+                std::unique_ptr<Session> session;
+                if (!o->exec.resume.empty()) {
+                    for (const char* f : {"--model", "--seed"})
+                        if (const CLI::Option* op = sub->get_option_no_throw(f); op && op->count())
+                            throw UserError(std::string(f) +
+                                            ": --resume takes the grid from the run folder");
+                    session = std::make_unique<Session>(resume_session(o->exec, "table1", 0));
+                    plan = sw::plan_from_json(session->manifest.payload);
+                    plan.jobs = session->manifest.jobs;
+                } else {
+                    check_model_name(o->model);
+                    sw::Spec s;
+                    s.command = "table1";
+                    s.model = o->model;
+                    s.input.seed = o->seed;
+                    std::string widths, levels;
+                    for (int w : kWidths)
+                        widths += (widths.empty() ? "" : ",") + std::to_string(w) + "x" +
+                                  std::to_string(kHeight);
+                    for (int d : kLevels) levels += (levels.empty() ? "" : ",") + std::to_string(d);
+                    s.fixed = {sw::make_axis("pes", "--pes", "256"),
+                               sw::make_axis("clock_mhz", "--clock-mhz", "40")};
+                    s.swept = {sw::make_axis("roi_size", "--roi-size", widths),
+                               sw::make_axis("D", "--D", levels)};
+                    for (size_t wi = 0; wi < std::size(kWidths); ++wi)
+                        for (size_t di = 0; di < std::size(kLevels); ++di)
+                            if (kLevels[di] <= kWidths[wi]) s.points.push_back({wi, di});
+                    const AlgoFlags defaults;
+                    imap::golden::Roi roi;
+                    bool has_roi = false;
+                    s.base = parse_algo_flags(defaults, &roi, &has_roi);
+                    s.fixed_algorithm = algo_params_json(s.base);
+                    plan = sw::plan(s);
+                    session = std::make_unique<Session>(
+                        start_session(o->exec, "table1", sw::to_json(plan), plan.jobs, 0));
+                }
+                session->exec_keep = o->exec.keep;
+                const sw::Result r = run_sweep_session(*session, plan, 1);
 
                 // The grid: rows width, columns D.
-                auto cell = [&](int w, int d) -> const sweep::Row* {
+                auto cell = [&](int w, int d) -> const sw::Row* {
                     const std::string ws = std::to_string(w) + "x" + std::to_string(kHeight);
-                    for (const sweep::Row& row : r.rows)
+                    for (const sw::Row& row : r.rows)
                         if (row.values[0] == ws && row.values[1] == std::to_string(d)) return &row;
                     return nullptr;
                 };
                 std::printf(
                     "\nTable 1 on the modeled board: modeled ms per frame (256 PEs at 40 MHz, "
                     "ROI height %d, bidir, vote on, model %s)\n",
-                    kHeight, o->model.c_str());
-                const std::string note = " [paper " + sweep::fmt("%g", kPaperHeadlineMs) + "]";
+                    kHeight, plan.model.c_str());
+                const std::string note = " [paper " + fmt("%g", kPaperHeadlineMs) + "]";
                 auto emit = [](std::string line) {
                     line.erase(line.find_last_not_of(' ') + 1);
                     std::printf("%s\n", line.c_str());
@@ -98,9 +122,9 @@ Subcommand register_table1(CLI::App& app) {
                         std::string c, extra;
                         if (d > w) {
                             c = "-";
-                        } else if (const sweep::Row* row = cell(w, d)) {
-                            c = row->ran ? sweep::fmt("%.3f", row->modeled_ms)
-                                         : std::string(sweep::status_name(row->status));
+                        } else if (const sw::Row* row = cell(w, d)) {
+                            c = row->ran() ? fmt("%.3f", row->run->modeled_ms)
+                                           : std::string(sw::status_name(row->status));
                             if (w == 128 && d == 64) extra = note;
                         } else {
                             c = "not run";
@@ -118,30 +142,31 @@ Subcommand register_table1(CLI::App& app) {
 
                 if (!o->csv.empty()) {
                     std::ostringstream c;
-                    c << "width,D,modeled_ms,cycles\n";
+                    c << "width,D,modeled_ms,cycles,dominant_phase\n";
                     for (int w : kWidths)
                         for (int d : kLevels) {
                             if (d > w) continue;
-                            const sweep::Row* row = cell(w, d);
+                            const sw::Row* row = cell(w, d);
                             if (!row) continue;  // interrupted before it ran
                             c << w << "," << d << ","
-                              << (row->ran ? sweep::fmt("%.6f", row->modeled_ms) : "") << ","
-                              << (row->ran ? std::to_string(row->cycles) : "") << "\n";
+                              << (row->ran() ? fmt("%.6f", row->run->modeled_ms) : "") << ","
+                              << (row->ran() ? std::to_string(row->run->cycles) : "") << ","
+                              << (row->ran() ? row->run->dominant_phase() : "") << "\n";
                         }
                     imap::vision::write_text_atomic(o->csv, c.str());
                     std::printf("  csv -> %s\n", o->csv.c_str());
                 }
                 if (!o->json.empty()) {
-                    nlohmann::json j = sweep::to_json(s, r);
+                    nlohmann::json j = sw::to_json(plan, r);
                     j["paper_headline_ms"] = kPaperHeadlineMs;
                     j["headline_cell"] = {{"width", 128}, {"D", 64}};
-                    if (const sweep::Row* row = cell(128, 64); row && row->ran)
-                        j["headline_modeled_ms"] = row->modeled_ms;
+                    if (const sw::Row* row = cell(128, 64); row && row->ran())
+                        j["headline_modeled_ms"] = row->run->modeled_ms;
                     imap::vision::write_text_atomic(o->json, j.dump(2) + "\n");
                     std::printf("  json -> %s\n", o->json.c_str());
                 }
                 std::fflush(stdout);
-                return r.exit_code();
+                return r.exit_code(plan.dry_run);
             }};
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "imap/engine/error.hpp"
 #include "imap/golden/params.hpp"
 #include "imap/vision/image_io.hpp"
 
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
 #endif
     subs.push_back(register_sweep(app));
     subs.push_back(register_table1(app));
+    subs.push_back(register_run_task(app));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -45,6 +47,9 @@ int main(int argc, char** argv) {
             if (s.app->parsed()) return s.run();
         return subs.front().run();  // no subcommand: the main job
     } catch (const UserError& e) {
+        std::cerr << "imapsim: error: " << e.what() << "\n";
+        return e.code();
+    } catch (const imap::engine::Error& e) {
         std::cerr << "imapsim: error: " << e.what() << "\n";
         return e.code();
     } catch (const imap::vision::InputError& e) {

@@ -366,11 +366,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
 #ifdef IMAPSIM_HAVE_WAVES
                 print_rtl_waves(lc.rtl.waves);
 #endif
-                r.cycles = rr.cycles;
-                r.modeled_ms = rr.modeled_ms;
-                r.wall_s = rr.wall_s;
-                r.phases = fw::phase_table(prog, rr.phase_cycles);
-                r.stats = rr.stats;
+                r = fw::frame_result(run.plan, prog, rr, std::move(out.image[0].pixels));
                 std::printf("  RTL design: configuration %s, %llu clocks\n",
                             rr.configuration.c_str(), static_cast<unsigned long long>(rr.clocks));
                 print_rtl_area();
@@ -386,16 +382,9 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                     static_cast<unsigned long long>(lr.compared),
                     static_cast<unsigned long long>(lr.tlm.cycles),
                     static_cast<unsigned long long>(lr.rtl.cycles));
-                r.cycles = lr.rtl.cycles;
-                r.modeled_ms = lr.rtl.modeled_ms;
+                r = fw::frame_result(run.plan, prog, lr.rtl, std::move(out.image[0].pixels));
                 r.wall_s = lr.wall_s;
-                r.phases = fw::phase_table(prog, lr.rtl.phase_cycles);
-                r.stats = lr.rtl.stats;
             }
-            r.map.width = roi.w;
-            r.map.height = roi.h;
-            r.map.data = out.image[0].pixels;
-            fw::set_relayout_figures(run.plan, r);
             finish_waves(r.cycles);
             return run;
         }
@@ -408,17 +397,8 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             const imap::tlm::TlmRunResult tr =
                 imap::tlm::run_tlm(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
                                    fw::to_video_image(right), roi.w, roi.h, &out, tcfg);
-            fw::FrameResult& r = run.result;
-            r.cycles = tr.cycles;
-            r.modeled_ms = tr.modeled_ms;
-            r.wall_s = tr.wall_s;
-            r.phases = fw::phase_table(prog, tr.phase_cycles);
-            r.stats = tr.stats;
-            r.map.width = roi.w;
-            r.map.height = roi.h;
-            r.map.data = out.image[0].pixels;
-            fw::set_relayout_figures(run.plan, r);
-            finish_waves(r.cycles);
+            run.result = fw::frame_result(run.plan, prog, tr, std::move(out.image[0].pixels));
+            finish_waves(run.result.cycles);
             return run;
         }
 #endif

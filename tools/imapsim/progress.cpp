@@ -46,8 +46,8 @@ void Progress::draw_bar(bool force) {
         std::snprintf(eta, sizeof eta, "%ld:%02ld", s / 60, s % 60);
     }
     clear_bar();
-    std::printf("[%s] %zu/%zu %s  %.2f %s/s  ETA %s", bar.c_str(), done_, total_, unit_.c_str(),
-                rate, unit_.c_str(), eta);
+    std::printf("[%s] %zu/%zu %s  %.2f %s/s  ETA %s%s%s", bar.c_str(), done_, total_, unit_.c_str(),
+                rate, unit_.c_str(), eta, status_.empty() ? "" : "  | ", status_.c_str());
     std::fflush(stdout);
     bar_shown_ = true;
 }
@@ -62,6 +62,12 @@ void Progress::note(const std::string& line) {
 void Progress::step(const std::string& line) {
     ++done_;
     note(line);
+}
+
+void Progress::set_status(const std::string& s) {
+    if (s == status_) return;
+    status_ = s;
+    draw_bar(false);
 }
 
 void Progress::finish() {

@@ -23,6 +23,8 @@ class Progress {
     void step(const std::string& line);
     // Prints a line without counting an item (warnings, notes).
     void note(const std::string& line);
+    // A short state shown at the end of the bar (e.g. the Slurm queue), terminal only.
+    void set_status(const std::string& s);
     // Removes the bar (idempotent; the destructor calls it).
     void finish();
 
@@ -34,7 +36,7 @@ class Progress {
     void clear_bar();
     void draw_bar(bool force);
 
-    std::string unit_;
+    std::string unit_, status_;
     size_t total_ = 0, done_ = 0;
     bool tty_ = false, bar_shown_ = false;
     std::chrono::steady_clock::time_point start_, last_draw_;

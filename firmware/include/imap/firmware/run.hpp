@@ -9,6 +9,7 @@
 #include "imap/firmware/plan.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
+#include "imap/isa/model_run.hpp"
 
 namespace imap::firmware {
 
@@ -33,6 +34,12 @@ void set_relayout_figures(const FramePlan& plan, FrameResult& r);
 std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Machine& m);
 std::vector<std::pair<std::string, uint64_t>> phase_table(const isa::Program& prog,
                                                           const std::vector<uint64_t>& cycles);
+
+// A frame's result from any model's run result: the phases named by the
+// program, the disparity map from the model's video output (the plan's ROI
+// size), the re-layout figures against the plan's bound.
+FrameResult frame_result(const FramePlan& plan, const isa::Program& prog, const isa::ModelRun& run,
+                         std::vector<uint8_t> pixels);
 
 // Runs one frame on the bare machine core (the executor every model wraps).
 // `observer` (optional, e.g. the waves tracer) is attached for the run.

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "imap/isa/machine.hpp"
+#include "imap/isa/model_run.hpp"
 #include "imap/rtl/config.hpp"
 #include "imap/tlm/system.hpp"
 
@@ -51,14 +52,12 @@ struct RtlState {
     }
 };
 
-struct RtlRunResult {
-    bool halted = false;
-    uint64_t cycles = 0;  // machine cycles (the design's cycle counter)
-    double modeled_ms = 0;
-    double wall_s = 0;  // wall time of the run (not the program load)
-    std::vector<uint64_t> phase_cycles;
-    isa::Stats stats;  // from the design's performance counters
-    uint64_t clocks = 0;  // clock periods of the run (machine cycles + zero-cost slots)
+// The common run result (isa/model_run.hpp: cycles = the design's machine
+// cycle counter, wall_s = the run without the program load, stats = the
+// design's performance counters; `machine` is not set: the design's final
+// state is `state`) and the RTL's own figures.
+struct RtlRunResult : isa::ModelRun {
+    uint64_t clocks = 0;        // clock periods of the run (machine cycles + zero-cost slots)
     std::string configuration;  // "p256_m1024_x65536 (fast)"
     bool waves_written = false;
     std::shared_ptr<const RtlState> state;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "imap/isa/machine.hpp"
+#include "imap/isa/model_run.hpp"
 #include "imap/tlm/components.hpp"
 #include "imap/tlm/config.hpp"
 #include "imap/tlm/cp.hpp"
@@ -31,23 +32,16 @@ struct OutputImages {
     ImageInput image[2];  // output ports 0 and 1
 };
 
-struct TlmRunResult {
-    bool halted = false;
-    uint64_t cycles = 0;
-    double modeled_ms = 0;  // cycles / clock_mhz
-    double wall_s = 0;      // wall time of sc_start (run_tlm only)
-    std::vector<uint64_t> phase_cycles;
-    isa::Stats stats;
+// The common run result (isa/model_run.hpp; wall_s: of sc_start, run_tlm
+// only) and the TLM model's own statistics.
+struct TlmRunResult : isa::ModelRun {
     RingStats ring;
     MaskBusStats maskbus;
     VideoStats video;
     uint64_t syncs = 0;      // quantum keeper synchronisations (quantum ends + video lines)
     uint64_t chunks = 0;     // Machine::run calls made by the CP thread
     double quantum_ns = 0;   // the global quantum used
-    double sim_time_s = 0;   // sc_time_stamp() at the end (= cycles x period)
     bool video_dmi = false;  // the CP moved video rows through the array's DMI pointer
-    // The final architectural state (registers, flags, memories, CP).
-    std::shared_ptr<const isa::Machine> machine;
 };
 
 namespace detail {

@@ -1,0 +1,31 @@
+# imapsim plot: Modeled frame time vs clock (MHz) (imapsim sweep, model tlm)
+# Redraw or restyle: cd to this folder and run gnuplot on this file; another output:
+#   gnuplot -e "outfile='plot.svg'" THIS.gp   (.png: pngcairo, .svg: svg)
+if (!exists("datafile")) datafile = "whatif_clock.dat"
+if (!exists("outfile")) outfile = "whatif_clock.png"
+if (strlen(outfile) > 4 && outfile[strlen(outfile)-3:] eq ".svg") {
+    set terminal svg size 900,600 dynamic font "sans,11" background rgb "white"
+} else {
+    set terminal pngcairo size 900,600 font "sans,10" background rgb "white"
+}
+set output outfile
+set termoption noenhanced
+set encoding utf8
+set style textbox opaque noborder
+set title "Modeled frame time vs clock (MHz) (imapsim sweep, model tlm)\nsynthetic scene; roi_size=128x128, D=64"
+set xlabel "clock (MHz)"
+set ylabel "modeled frame time (ms)"
+set grid xtics ytics mxtics mytics lc rgb "#dddddd" lt 1, lc rgb "#eeeeee" lt 1
+set border 3 lc rgb "#444444"
+set tics nomirror
+set logscale x 2
+set logscale y 10
+set xrange [8:200]
+set yrange [0.6183359375:160]
+set xtics ("10" 10, "20" 20, "40" 40, "80" 80, "160" 160)
+unset key
+set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"
+set label 1 "real time, 10 fps (100 ms)" at graph 0.01, first 100 left offset 0,0.7 textcolor rgb "#666666"
+set arrow 2 from graph 0, first 40 to graph 1, first 40 nohead dt 2 lw 1.5 lc rgb "#888888"
+set label 2 "video rate, 25 fps (40 ms)" at graph 0.01, first 40 left offset 0,0.7 textcolor rgb "#666666"
+plot datafile index 0 using 1:2 with linespoints lw 2 pt 7 ps 1.3 notitle

@@ -1,0 +1,213 @@
+// The sweep engine without running a model: value lists and ranges, axes,
+// planning points in-process (answers and jobs), the plan in the run
+// folder, knees and their explanation, CSV / JSON columns (dominant phase,
+// area when reported), the figure.
+#define BOOST_TEST_MODULE engine_sweep
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+
+#include "engine_test_util.hpp"
+#include "imap/engine/error.hpp"
+#include "imap/engine/sweep.hpp"
+#include "imap/engine/values.hpp"
+
+namespace eng = imap::engine;
+namespace sw = imap::engine::sweep;
+
+using enginetest::Cleanup;
+BOOST_TEST_GLOBAL_FIXTURE(Cleanup);
+
+namespace {
+
+using V = std::vector<std::string>;
+
+// A ran row with modeled time `ms` (40 MHz) and the given phases.
+sw::Row ran_row(const V& values, double ms, std::vector<std::pair<std::string, uint64_t>> phases) {
+    sw::Row r;
+    r.values = values;
+    r.status = sw::Status::Ok;
+    eng::RunResult rr;
+    rr.model = "core";
+    rr.outcome = eng::Outcome::Ok;
+    rr.exit_code = 0;
+    rr.has_report = true;
+    rr.bit_exact = true;
+    rr.modeled_ms = ms;
+    rr.cycles = static_cast<uint64_t>(ms * 40000);
+    rr.phases = std::move(phases);
+    r.run = rr;
+    return r;
+}
+
+sw::Plan pes_plan(const V& pes) {
+    sw::Plan p;
+    p.swept = {sw::make_axis("pes", "--pes", [&] {
+        std::string s;
+        for (const auto& v : pes) s += (s.empty() ? "" : ",") + v;
+        return s;
+    }())};
+    return p;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(value_lists_and_ranges) {
+    using eng::ValueType;
+    BOOST_TEST(
+        (eng::parse_value_list("--pes", "8..64*2", ValueType::Int) == V{"8", "16", "32", "64"}));
+    BOOST_TEST((eng::parse_value_list("--pes", "8..60*2", ValueType::Int) == V{"8", "16", "32"}));
+    BOOST_TEST(
+        (eng::parse_value_list("--D", "1..7:3,20", ValueType::Int) == V{"1", "4", "7", "20"}));
+    BOOST_TEST(
+        (eng::parse_value_list("--c", "10..40:10", ValueType::Real) == V{"10", "20", "30", "40"}));
+    BOOST_TEST((eng::parse_value_list("--c", "0.5..2*2", ValueType::Real) == V{"0.5", "1", "2"}));
+    BOOST_TEST(
+        (eng::parse_value_list("--mode", "single,bidir", ValueType::Text) == V{"single", "bidir"}));
+    for (const char* bad :
+         {"", "8..", "..8", "64..8", "8..64*1", "4,,8", "4,", "1.5", "a", "8,8", "1..20000"}) {
+        BOOST_TEST_CONTEXT(bad) {
+            try {
+                eng::parse_value_list("--pes", bad, ValueType::Int);
+                BOOST_ERROR("accepted");
+            } catch (const eng::Error& e) {
+                BOOST_TEST(std::string(e.what()).find("--pes") != std::string::npos);
+                BOOST_TEST(e.code() == eng::kExitInput);
+            }
+        }
+    }
+    BOOST_CHECK_THROW(eng::parse_value_list("--mode", "a..b", ValueType::Text), eng::Error);
+}
+
+BOOST_AUTO_TEST_CASE(axes_check_their_values) {
+    BOOST_TEST(sw::make_axis("clock_mhz", "--clock-mhz", "10..40:10").values.size() == 4u);
+    BOOST_CHECK_THROW(sw::make_axis("D", "--D", "0,4"), eng::Error);
+    BOOST_CHECK_THROW(sw::make_axis("roi_size", "--roi-size", "32y16"), eng::Error);
+    BOOST_CHECK_THROW(sw::make_axis("mode", "--mode", "both"), eng::Error);
+    BOOST_CHECK_THROW(sw::make_axis("nosuch", "--set nosuch", "1,2"), eng::Error);
+    BOOST_CHECK_THROW(sw::make_axis("pes", "--pes", "1"), eng::Error);  // the machine says >= 2
+    const sw::Axis a = sw::make_axis("pes", "--pes", "2..200");
+    const sw::Axis b = sw::make_axis("D", "--D", "1..100");
+    try {
+        sw::product({a, b});
+        BOOST_ERROR("accepted");
+    } catch (const eng::Error& e) {
+        BOOST_TEST(std::string(e.what()).find("19900 points") != std::string::npos);
+    }
+    BOOST_TEST(
+        sw::product({sw::make_axis("pes", "--pes", "8,16"), sw::make_axis("D", "--D", "4,5,6")})
+            .size() == 6u);
+}
+
+BOOST_AUTO_TEST_CASE(planning_gives_answers_and_jobs) {
+    sw::Spec s;
+    s.model = "core";
+    s.swept = {sw::make_axis("mem_bytes", "--mem-bytes", "1024,60"),
+               sw::make_axis("D", "--D", "8,40")};
+    s.fixed = {sw::make_axis("roi_size", "--roi-size", "32x16")};
+    s.base_args = {"--vote", "on"};
+    const sw::Plan p = sw::plan(s);
+    BOOST_REQUIRE_EQUAL(p.rows.size(), 4u);
+    // 1024 B, D=8: runs; 60 B: does not fit (with the bytes it needs); D=40 > 32: cannot run.
+    BOOST_TEST(p.rows[0].status == sw::Status::Planned);
+    BOOST_TEST(p.rows[0].job == 0);
+    BOOST_TEST(p.rows[1].status == sw::Status::CannotRun);
+    BOOST_TEST(p.rows[2].status == sw::Status::DoesNotFit);
+    BOOST_TEST(p.rows[2].message.find("have 60") != std::string::npos);
+    BOOST_TEST(p.rows[2].local_bytes > 60);
+    BOOST_REQUIRE_EQUAL(p.jobs.size(), 1u);
+    const V& a = p.jobs[0].args;
+    BOOST_TEST((V(a.begin(), a.begin() + 3) == V{"run", "--model", "core"}));
+    for (const char* want : {"--mem-bytes", "--D", "--vote", "--size", "--roi"})
+        BOOST_TEST((std::find(a.begin(), a.end(), want) != a.end()), want);
+    BOOST_TEST(!p.phase_names.empty());
+    // The plan survives the run folder.
+    const sw::Plan back = sw::plan_from_json(sw::to_json(p));
+    BOOST_TEST(sw::to_json(back) == sw::to_json(p));
+    BOOST_CHECK_THROW(sw::plan_from_json({{"kind", "regress-plan"}}), eng::Error);
+    // Dry run: nothing to run, the answer says it fits.
+    s.dry_run = true;
+    const sw::Plan d = sw::plan(s);
+    BOOST_TEST(d.jobs.empty());
+    BOOST_TEST(d.rows[0].message.find("fits:") == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(a_knee_is_found_where_the_slope_turns) {
+    // Time halves per doubling up to 64 PEs (forward shrinks), then grows
+    // (relayout grows): one knee, at 64, explained by both phases.
+    const V pes = {"16", "32", "64", "128", "256"};
+    const sw::Plan p = pes_plan(pes);
+    std::vector<sw::Row> rows;
+    const double fwd[] = {800, 400, 200, 100, 50}, rel[] = {10, 20, 40, 200, 600};
+    for (size_t i = 0; i < pes.size(); ++i)
+        rows.push_back(ran_row({pes[i]}, (fwd[i] + rel[i]) / 40.0,
+                               {{"relayout_in", static_cast<uint64_t>(rel[i] * 1000)},
+                                {"forward", static_cast<uint64_t>(fwd[i] * 1000)}}));
+    const auto knees = sw::find_knees(p, rows, 0);
+    BOOST_REQUIRE_EQUAL(knees.size(), 1u);
+    const sw::Knee& k = knees[0];
+    BOOST_TEST(k.x == "64");
+    BOOST_TEST(k.phase_before == "forward");
+    BOOST_TEST(k.phase_after == "relayout_in");
+    BOOST_TEST(k.slope_before < -0.5);
+    BOOST_TEST(k.slope_after > -0.5);
+    BOOST_TEST(k.explanation.find("knee at pes=64") == 0u);
+    BOOST_TEST(k.explanation.find("relayout_in +400%") != std::string::npos, k.explanation);
+    BOOST_TEST(k.explanation.find("dominant phase forward -> relayout_in") != std::string::npos,
+               k.explanation);
+    // The figure marks it.
+    sw::Result r;
+    r.rows = rows;
+    r.x_axis = "pes";
+    r.knees = knees;
+    eng::plot::Figure f;
+    BOOST_REQUIRE(sw::make_figure(p, r, 0, &f));
+    BOOST_REQUIRE_EQUAL(f.annotations.size(), 1u);
+    BOOST_TEST(f.annotations[0].x == 64.0);
+    BOOST_TEST(f.logx);
+}
+
+BOOST_AUTO_TEST_CASE(no_knee_on_a_straight_scaling_curve) {
+    const V pes = {"16", "32", "64", "128"};
+    const sw::Plan p = pes_plan(pes);
+    std::vector<sw::Row> rows;
+    for (size_t i = 0; i < pes.size(); ++i)
+        rows.push_back(ran_row({pes[i]}, 100.0 / std::pow(2.0, static_cast<double>(i)) + 0.0,
+                               {{"forward", 1000u >> i}}));
+    BOOST_TEST(sw::find_knees(p, rows, 0).empty());
+    // Two points cannot have one; a categorical axis has none.
+    rows.resize(2);
+    BOOST_TEST(sw::find_knees(p, rows, 0).empty());
+}
+
+BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
+    const sw::Plan p = pes_plan({"8", "16"});
+    sw::Result r;
+    r.total = 2;
+    r.rows = {ran_row({"8"}, 2.0, {{"forward", 60000}, {"relayout_in", 20000}}),
+              ran_row({"16"}, 1.0, {{"forward", 20000}, {"relayout_in", 20000}})};
+    r.rows[1].run->area = eng::Area{4096, 262144};
+    r.phase_names = {"relayout_in", "forward"};
+    const std::string csv = sw::to_csv(p, r);
+    const std::string head = csv.substr(0, csv.find('\n'));
+    BOOST_TEST(head.find("dominant_phase,dominant_share,area_cells,area_memory_bits,"
+                         "phase_relayout_in,phase_forward") != std::string::npos);
+    BOOST_TEST(csv.find("forward,0.7500,,,20000,60000") != std::string::npos, csv);
+    BOOST_TEST(csv.find(",4096,262144,") != std::string::npos, csv);
+    const auto j = sw::to_json(p, r);
+    BOOST_TEST(j["rows"][0]["dominant_phase"] == "forward");
+    BOOST_TEST(j["rows"][1]["area"]["cells"] == 4096);
+    BOOST_TEST(!j["rows"][0].contains("area"));
+    BOOST_TEST(r.exit_code(false) == 0);
+    // The exit code: nothing ran is 5, a failed row is 5, interrupted 130.
+    sw::Result none;
+    sw::Row nf;
+    nf.values = {"8"};
+    nf.status = sw::Status::DoesNotFit;
+    none.rows = {nf};
+    BOOST_TEST(none.exit_code(false) == 5);
+    BOOST_TEST(none.exit_code(true) == 5);
+    none.rows[0].status = sw::Status::Planned;
+    BOOST_TEST(none.exit_code(true) == 0);
+    none.interrupted = true;
+    BOOST_TEST(none.exit_code(true) == 130);
+}
