@@ -11,6 +11,8 @@ PACKAGES=(
   libcli11-dev            # command-line parsing
   nlohmann-json3-dev      # JSON reports
   python3                 # helper scripts (scripts/model-speed.sh)
+  verilator               # the RTL design verilated into SystemC models (rtl_model/, 5.006)
+  yosys                   # generic-gate synthesis of the PE and the CP (area figures, 0.23)
   valgrind                # memcheck test of a TLM run (scripts/valgrind.sh, CTest valgrind.tlm_run)
   gnuplot-nox             # sweep plots (pngcairo and svg terminals; docs/whatif.md)
   fonts-dejavu-core       # a font for gnuplot's cairo terminals

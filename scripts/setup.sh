@@ -46,7 +46,9 @@ case "$mode" in
     ctest --test-dir build --output-on-failure -j "$jobs"
     fuzz_figures build
     echo "== Sanitizer (ASan+UBSan) test suite (every test; docs/testing.md)"
-    configure_build build-asan Asan
+    # The sanitizer build links the Release build's verilated RTL models
+    # (compiled without sanitizers in both) instead of verilating them again.
+    configure_build build-asan Asan -DIMAP_RTL_PREBUILT="$PWD/build"
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       ctest --test-dir build-asan --output-on-failure -j "$jobs"
     fuzz_figures build-asan

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <set>
 #include <string>
+
+#include "model.hpp"
 
 namespace imap::rtl {
 
@@ -15,6 +18,11 @@ bool parse_u64(const std::string& s, uint64_t& v) {
     if (s[0] == '-' || s[0] == '+') return false;
     v = std::strtoull(s.c_str(), &end, hex ? 16 : 10);
     return end && *end == '\0';
+}
+
+std::string spec_of(const isa::MachineConfig& cfg) {
+    return std::to_string(cfg.pes) + ":" + std::to_string(cfg.mem_bytes) + ":" +
+           std::to_string(cfg.ext_bytes);
 }
 }  // namespace
 
@@ -72,18 +80,75 @@ FaultInjection parse_fault_injection(const std::string& spec) {
     return f;
 }
 
+const std::vector<Mutant>& mutants() {
+    // ids as imap_pkg::MUT_* (rtl_model/hdl/imap_pkg.sv)
+    static const std::vector<Mutant> m = {
+        {1, "adc_carry", "adc / adci: the carry out ignores the carry in"},
+        {2, "sub_mask", "sub: written back on masked PEs too (mask gating of one opcode)"},
+        {3, "ring_wrap", "rxr: PE P-1 receives 0 instead of PE 0's value (one wrap-around)"},
+        {4, "xfer_len", "xld: one row (byte per PE) less than the length (off by one)"},
+        {5, "stale_fwd",
+         "PE preload: the ring source / per-PE address ignore the register written at the same "
+         "edge (stale forwarded register)"},
+        {6, "cp_fwd",
+         "decode: cB of ld / st read without forwarding from execute (stale CP register)"},
+        {7, "shr_carry", "shri / shrv: C is the bit above the last one shifted out"},
+        {8, "rall_mask", "rall: the AND includes the masked PEs"},
+        {9, "mif_depth", "mif: the mask stack overflows one level late"},
+        {10, "loop_bubble", "loop: a taken loop pays no refill bubble"},
+        {11, "melse_top", "melse: uses M instead of the saved mask (forgets the enclosing mif)"},
+        {12, "xst_last_row", "xst: the last row of a transfer is not written"},
+    };
+    return m;
+}
+
+uint32_t mutant_id(const std::string& name) {
+    if (name == "none") return 0;  // the mutation-check model, no bug selected
+    std::string known = "none";
+    for (const Mutant& m : mutants()) {
+        if (name == m.name) return m.id;
+        known += ", " + std::string(m.name);
+    }
+    throw isa::ConfigError("invalid value '" + name + "' for the planted bug: expected one of " +
+                           known);
+}
+
+std::vector<std::string> RtlWaves::scopes(const std::string& top, int pes_total) const {
+    auto has = [&](const char* g) {
+        return groups.empty() || std::find(groups.begin(), groups.end(), g) != groups.end();
+    };
+    const std::string t = top + ".imap_top";
+    std::vector<std::string> s;
+    if (groups.empty() && pes.empty()) return s;  // everything
+    // top-level ports (clk, straps, done) and the signals of imap_top itself
+    // (not the units below it: "!", model_impl.hpp)
+    s.push_back(t + "!");
+    if (has("cp")) s.push_back(t + ".u_cp");
+    if (has("board")) s.push_back(t + ".u_board");
+    if (has("array")) s.push_back(t + ".u_array!");  // ring links, mask bus; the PEs below
+    if (has("pe")) {
+        if (pes.empty())
+            for (int p = 0; p < pes_total; ++p)
+                s.push_back(t + ".u_array.g_pe[" + std::to_string(p) + "]");
+        else
+            for (int p : pes) s.push_back(t + ".u_array.g_pe[" + std::to_string(p) + "]");
+    }
+    return s;
+}
+
+void RtlWaves::validate(const isa::MachineConfig& cfg) const {
+    for (int p : pes)
+        if (p < 0 || p >= cfg.pes)
+            throw isa::ConfigError("waves: PE " + std::to_string(p) + " out of range (0.." +
+                                   std::to_string(cfg.pes - 1) + ")");
+    for (const std::string& g : groups)
+        if (g != "cp" && g != "array" && g != "board" && g != "pe")
+            throw isa::ConfigError("waves: invalid group '" + g +
+                                   "' for the RTL model: expected cp, array, board, pe");
+    if (t1 < t0) throw isa::ConfigError("waves: window end before its start");
+}
+
 void RtlConfig::validate(const isa::MachineConfig& cfg) const {
-    if (trace_pe_first < 0 || trace_pe_first > cfg.pes)
-        throw isa::ConfigError("trace_pe_first = " + std::to_string(trace_pe_first) +
-                               " out of range (0.." + std::to_string(cfg.pes) + ")");
-    if (trace_pe_count < -1 || (trace_pe_count > 0 && trace_pe_first + trace_pe_count > cfg.pes))
-        throw isa::ConfigError("trace_pe_count = " + std::to_string(trace_pe_count) +
-                               " out of range (-1 = to the last PE, 0.." +
-                               std::to_string(cfg.pes - trace_pe_first) + ")");
-    for (int r : trace_regs)
-        if (r < 0 || r >= cfg.pe_regs)
-            throw isa::ConfigError("trace_regs: register " + std::to_string(r) +
-                                   " out of range (0.." + std::to_string(cfg.pe_regs - 1) + ")");
     if (inject.enabled) {
         if (inject.pe < 0 || inject.pe >= cfg.pes)
             throw isa::ConfigError("inject: PE " + std::to_string(inject.pe) +
@@ -96,21 +161,123 @@ void RtlConfig::validate(const isa::MachineConfig& cfg) const {
         if (inject.reg < 0 && (inject.mask & 1u) == 0)
             throw isa::ConfigError("inject: a flag (C, T, M) is one bit: mask must be odd");
     }
+    if (!mutant.empty()) mutant_id(mutant);
+    if (!waves.path.empty()) waves.validate(cfg);
 }
 
-int RtlConfig::traced_first(const isa::MachineConfig& cfg) const {
-    return std::min(trace_pe_first, cfg.pes);
+std::string gtkw_path(const std::string& waves_path) {
+    const size_t slash = waves_path.find_last_of('/');
+    const size_t dot = waves_path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+        return waves_path + ".gtkw";
+    return waves_path.substr(0, dot) + ".gtkw";
 }
 
-int RtlConfig::traced_count(const isa::MachineConfig& cfg) const {
-    return trace_pe_count < 0 ? cfg.pes - traced_first(cfg) : trace_pe_count;
+std::vector<std::string> built_configurations() {
+    std::vector<std::string> v;
+    for (const detail::ConfigInfo& c : detail::built_configs())
+        v.push_back(std::string(c.name) + (c.mutants      ? " (mutation check)"
+                                           : c.trace == 1 ? " (VCD waves)"
+                                           : c.trace == 2 ? " (FST waves)"
+                                                          : ""));
+    return v;
 }
 
-std::vector<int> RtlConfig::traced_regs(const isa::MachineConfig& cfg) const {
-    if (!trace_regs.empty()) return trace_regs;
-    std::vector<int> all;
-    for (int r = 0; r < cfg.pe_regs; ++r) all.push_back(r);
-    return all;
+namespace {
+const detail::ConfigInfo* find(const isa::MachineConfig& cfg, int trace, bool mut) {
+    for (const detail::ConfigInfo& c : detail::built_configs())
+        if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
+            c.trace == trace && (c.mutants != 0) == mut)
+            return &c;
+    return nullptr;
+}
+
+std::string built_list(bool traced) {
+    std::set<std::string> names;
+    for (const detail::ConfigInfo& c : detail::built_configs())
+        if (!c.mutants && (traced ? c.trace != 0 : c.trace == 0))
+            names.insert(std::to_string(c.pes) + ":" + std::to_string(c.mem_bytes) + ":" +
+                         std::to_string(c.ext_bytes));
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s.empty() ? "none" : s;
+}
+}  // namespace
+
+bool has_configuration(const isa::MachineConfig& cfg) {
+    return find(cfg, 0, false) != nullptr;
+}
+
+std::string build_command(const isa::MachineConfig& cfg, bool traced) {
+    const std::string current =
+        traced ? detail::build_trace_configs() : detail::build_extra_configs();
+    const std::string list = current.empty() ? spec_of(cfg) : current + ";" + spec_of(cfg);
+    const std::string bin = detail::build_binary_dir();
+    return std::string("cmake -S ") + detail::build_source_dir() + " -B " + bin +
+           (traced ? " -DIMAP_RTL_TRACE_CONFIGS=\"" : " -DIMAP_RTL_EXTRA_CONFIGS=\"") + list +
+           "\" && cmake --build " + bin + " --target imapsim";
+}
+
+void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_mutants,
+                    size_t program_words, size_t phases) {
+    using namespace detail;
+    const std::string what = "pes=" + std::to_string(cfg.pes) +
+                             " mem_bytes=" + std::to_string(cfg.mem_bytes) +
+                             " ext_bytes=" + std::to_string(cfg.ext_bytes);
+    if (needs_mutants) {
+        bool any = false;
+        for (const ConfigInfo& c : built_configs()) any |= c.mutants != 0;
+        if (!any)
+            throw isa::ConfigError(
+                "RTL: this build has no mutation-check model (configure with "
+                "-DIMAP_RTL_MUTANTS=ON)");
+        if (!find(cfg, 0, true))
+            throw isa::ConfigError(
+                "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
+                "ext_bytes=65536 only (asked: " +
+                what + ")");
+    } else if (!needs_waves && !find(cfg, 0, false)) {
+        throw isa::ConfigError("RTL: no configuration " + what +
+                               " in this build (built: " + built_list(false) +
+                               "); PE count and memory sizes are HDL parameters: build it with: " +
+                               build_command(cfg, false));
+    } else if (needs_waves && !find(cfg, 1, false) && !find(cfg, 2, false)) {
+        throw isa::ConfigError("RTL waves: no traced configuration " + what +
+                               " in this build (traced: " + built_list(true) +
+                               "); build it with: " + build_command(cfg, true));
+    }
+    if (cfg.pe_regs > kHdlRegs)
+        throw isa::ConfigError("RTL: pe_regs = " + std::to_string(cfg.pe_regs) +
+                               " needs more registers than the design has per PE (" +
+                               std::to_string(kHdlRegs) + ", imap_top parameter NREGS)");
+    if (cfg.mask_depth > kHdlMaskDepth)
+        throw isa::ConfigError("RTL: mask_depth = " + std::to_string(cfg.mask_depth) +
+                               " needs a deeper mask stack than the design has (" +
+                               std::to_string(kHdlMaskDepth) + ", imap_top parameter MASK_DEPTH)");
+    if (cfg.call_depth > kHdlCallDepth)
+        throw isa::ConfigError("RTL: call_depth = " + std::to_string(cfg.call_depth) +
+                               " needs a deeper return stack than the design has (" +
+                               std::to_string(kHdlCallDepth) + ", imap_top parameter CALL_DEPTH)");
+    const uint64_t path = static_cast<uint64_t>(kHdlXrows) * static_cast<uint64_t>(cfg.pes);
+    if (cfg.costs.ext_bytes_per_cycle > path)
+        throw isa::ConfigError(
+            "RTL: ext_bytes_per_cycle = " + std::to_string(cfg.costs.ext_bytes_per_cycle) +
+            " is more than the design's transfer path moves per cycle (" +
+            std::to_string(kHdlXrows) + " rows of " + std::to_string(cfg.pes) +
+            " PEs = " + std::to_string(path) + " bytes, imap_top parameter XROWS)");
+    if (cfg.mem_bytes > (1u << 20))
+        throw isa::ConfigError("RTL: mem_bytes = " + std::to_string(cfg.mem_bytes) +
+                               " is beyond the control word's 20-bit address (1048576)");
+    if (program_words > kHdlImemWords)
+        throw isa::ConfigError("RTL: the program has " + std::to_string(program_words) +
+                               " instructions, the instruction memory holds " +
+                               std::to_string(kHdlImemWords) + " (imap_top parameter IMEM_WORDS)");
+    if (phases > static_cast<size_t>(kHdlPhases))
+        throw isa::ConfigError("RTL: the program names " + std::to_string(phases) +
+                               " phases, the design counts " + std::to_string(kHdlPhases) +
+                               " (imap_top parameter PHASES)");
+    if (cfg.watchdog_cycles > (UINT64_MAX >> 2))
+        throw isa::ConfigError("RTL: watchdog_cycles too large");
 }
 
 }  // namespace imap::rtl

@@ -23,7 +23,8 @@ using nlohmann::json;
 namespace {
 
 // The small synthetic case; rtl traces two PEs only to keep the VCD small.
-const char* const kCase = "--size 64x32 --D 16 --trace-pes 0:1";
+// 8 PEs: the RTL's waves need a traced configuration (built for 8 PEs).
+const char* const kCase = "--size 64x32 --D 16 --pes 8 --trace-pes 0:1";
 const char* const kModels[] = {"core", "tlm", "rtl"};
 
 // Report fields that measure the host, not the model (docs/errors.md).

@@ -766,7 +766,7 @@ BOOST_AUTO_TEST_CASE(fault_keeps_only_the_waves) {
         fs::create_directories(o);
         const clitest::Result r = clitest::run(
             substitute(std::string("run --model ") + model +
-                           " " PAIR " --D 8 --set watchdog_cycles=1000 --out {o}/map.png "
+                           " " PAIR " --D 8 --pes 8 --set watchdog_cycles=1000 --out {o}/map.png "
                            "--report {o}/r.json --vcd {o}/w.vcd --trace-pes 0:1",
                        o));
         BOOST_TEST_CONTEXT(model << "\n" << r.out) {

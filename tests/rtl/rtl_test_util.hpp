@@ -48,6 +48,15 @@ inline Frame random_frame(unsigned seed, int W, int H, int D) {
     return f;
 }
 
+// The TLM tests' configuration (tests/tlm) with the memory sizes of the
+// RTL configurations this build has (1024 B local, 64 KB external).
+inline isa::MachineConfig rtl_config(int pes) {
+    isa::MachineConfig cfg = config(pes);
+    cfg.mem_bytes = 1024;
+    cfg.ext_bytes = 65536;
+    return cfg;
+}
+
 struct FirmwareCase {
     g::Params p;
     g::Roi roi;

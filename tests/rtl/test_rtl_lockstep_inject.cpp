@@ -1,19 +1,24 @@
-// A fault injected into the RTL model only (XOR into r5 of PE 3 after
-// instruction 20) is caught by the lockstep comparison and reported with the
-// instruction, PE, register and both values.
+// A fault injected into the RTL design only (XOR into r5 of PE 3 right
+// after instruction 20, through the testbench's backdoor) is caught by the
+// lockstep comparison at the next retired instruction and reported with the
+// instruction, PE, register and both values; the waves of the cycles before
+// it are written by the traced replay of the design, with a GTKWave view.
 #define BOOST_TEST_MODULE rtl_lockstep_inject
 #include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "rtl_test_util.hpp"
 
 using namespace rtltest;
+namespace fs = std::filesystem;
 
-BOOST_AUTO_TEST_CASE(injected_fault_is_caught) {
-    const isa::MachineConfig cfg = config(8);
+BOOST_AUTO_TEST_CASE(injected_fault_is_caught_with_waves) {
+    const isa::MachineConfig cfg = rtl_config(8);
     const isa::Program prog = isa::assemble_string(kProgram, "equiv.s");
     const auto left = image(10, 3, 1), right = image(10, 3, 90);
-    const auto ref = run_reference(cfg, prog, left, right);
-    // The state r5 of PE 3 has right after instruction 20 (bare machine).
+    // The state of r5 of PE 3 right after instruction 21 (bare machine).
     isa::Machine m(cfg);
     m.load(prog);
     for (const auto& [i, v] : kParams) m.set_param(i, v);
@@ -23,7 +28,7 @@ BOOST_AUTO_TEST_CASE(injected_fault_is_caught) {
     video.make_output(0, kOutW, kOutH);
     video.make_output(1, kOutW, kOutH);
     m.set_video(&video);
-    for (int i = 0; i <= 20; ++i) m.step();
+    for (int i = 0; i <= 21; ++i) m.step();
     const uint8_t good = m.reg(3, 5);
 
     rtl::LockstepConfig lc;
@@ -31,13 +36,17 @@ BOOST_AUTO_TEST_CASE(injected_fault_is_caught) {
     BOOST_CHECK_EQUAL(lc.rtl.inject.reg, 5);
     BOOST_CHECK_THROW(rtl::parse_fault_injection("20:3:r5"), isa::ConfigError);
     BOOST_CHECK_THROW(rtl::parse_fault_injection("x:3:r5:1"), isa::ConfigError);
+    const fs::path dir = fs::temp_directory_path() / ("rtl-inject-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    lc.divergence_waves = (dir / "div.vcd").string();
+    lc.waves_cycles = 30;
     rtl::OutputImages out;
     const rtl::LockstepResult r =
         rtl::run_lockstep(cfg, prog, kParams, left, right, kOutW, kOutH, &out, lc);
     BOOST_REQUIRE(r.diverged);
     const rtl::Divergence& d = r.divergence;
     BOOST_TEST_MESSAGE(d.message());
-    BOOST_CHECK_EQUAL(d.instruction, 20u);
+    BOOST_CHECK_EQUAL(d.instruction, 21u);
     BOOST_CHECK_EQUAL(d.what, "r5");
     BOOST_CHECK_EQUAL(d.pe, 3);
     BOOST_CHECK_EQUAL(d.tlm_value, good);
@@ -45,4 +54,17 @@ BOOST_AUTO_TEST_CASE(injected_fault_is_caught) {
     BOOST_CHECK_EQUAL(d.pc, m.pc() - 1);
     BOOST_CHECK(!d.disassembly.empty());
     BOOST_CHECK(d.message().find("PE 3") != std::string::npos);
+    // the waves of the machine cycles before it, with the design's signals
+    BOOST_CHECK(d.message().find("-> " + lc.divergence_waves) != std::string::npos);
+    BOOST_REQUIRE(fs::exists(lc.divergence_waves));
+    BOOST_CHECK(fs::exists(dir / "div.gtkw"));
+    BOOST_CHECK(!fs::exists(lc.divergence_waves + ".part"));
+    std::ifstream in(lc.divergence_waves);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string vcd = ss.str();
+    BOOST_CHECK(vcd.find("$scope module u_cp $end") != std::string::npos);
+    BOOST_CHECK(vcd.find(" mcycle ") != std::string::npos);
+    BOOST_CHECK(vcd.find("$scope module g_pe[3] $end") != std::string::npos);
+    fs::remove_all(dir);
 }

@@ -131,7 +131,10 @@ BOOST_AUTO_TEST_CASE(vcd_on_a_model_without_tracing_is_an_input_error) {
     fs::remove_all(d);
 }
 
-BOOST_AUTO_TEST_CASE(rtl_per_cycle_waves_are_identical_and_well_formed) {
+// --model rtl: the verilated design's own signals (Verilator's VCD writer,
+// docs/rtl.md "Waves"): two runs give identical files; the selected PEs'
+// scopes only; the .gtkw names signals of the VCD.
+BOOST_AUTO_TEST_CASE(rtl_design_waves_are_identical_and_selected) {
     const fs::path d = tmpdir();
     const std::string a = (d / "R1.vcd").string(), b = (d / "R2.vcd").string();
     const std::string args = " --pes 8 --size 32x16 --D 8 --trace-pes 0:3";
@@ -140,41 +143,23 @@ BOOST_AUTO_TEST_CASE(rtl_per_cycle_waves_are_identical_and_well_formed) {
     BOOST_TEST_INFO(ra.out);
     BOOST_REQUIRE(ra.code == 0);
     BOOST_TEST(ra.out.find("waves -> " + a) != std::string::npos);
-    BOOST_TEST(ra.out.find("cycles traced") != std::string::npos);
+    BOOST_TEST(ra.out.find("the design's signals") != std::string::npos);
     const Result rb = run("run --model rtl --vcd " + b + args);
     BOOST_REQUIRE(rb.code == 0);
     const std::string va = vcdcheck::read_all(a), vb = vcdcheck::read_all(b);
     BOOST_TEST(va.size() > 10000u);
     BOOST_TEST((va == vb));
     BOOST_TEST(!fs::exists(a + ".part"));
-
-    vcdcheck::Parsed p = vcdcheck::parse(va);
-    BOOST_TEST(p.error == "");
-    BOOST_TEST(p.timescale == "1ns");
-    BOOST_REQUIRE(p.times.size() > 100u);
-    // Per clock cycle: every time stamp is a whole cycle (25 ns at 40 MHz),
-    // and most steps are exactly one cycle.
-    size_t one_cycle = 0;
-    for (size_t i = 0; i < p.times.size(); ++i) {
-        BOOST_TEST(p.times[i] % 25u == 0u, p.times[i]);
-        if (i > 0 && p.times[i] - p.times[i - 1] == 25u) ++one_cycle;
-    }
-    BOOST_TEST(one_cycle * 2 > p.times.size());
-    BOOST_TEST(p.full_names.count("top.cp.instr[255:0]") == 1u);
-    BOOST_TEST(p.full_names.count("top.cp.phase[127:0]") == 1u);
-    BOOST_TEST(p.full_names.count("top.cp.valid") == 1u);
-    BOOST_TEST(p.full_names.count("top.pe3.r15[7:0]") == 1u);
-    BOOST_TEST(p.full_names.count("top.pe4.r15[7:0]") == 0u);
-    BOOST_TEST(p.changes_by_name["top.cp.valid"] > 100u);
-    BOOST_TEST(p.changes_by_name["top.pe0.mem_we"] > 10u);
-    BOOST_TEST(p.changes_by_name["top.pe0.ring_we"] > 10u);
+    BOOST_TEST(va.find("$timescale 1ps $end") != std::string::npos);
+    BOOST_TEST(va.find("$scope module u_cp $end") != std::string::npos);
+    BOOST_TEST(va.find(" mcycle ") != std::string::npos);
+    BOOST_TEST(va.find("$scope module g_pe[3] $end") != std::string::npos);
+    BOOST_TEST(va.find("$scope module g_pe[4] $end") == std::string::npos);  // not selected
 
     const std::string g = vcdcheck::read_all((d / "R1.gtkw").string());
     BOOST_TEST(g.find("[dumpfile] \"R1.vcd\"") != std::string::npos);
-    BOOST_TEST(g.find("-PE 3") != std::string::npos);
-    const auto names = vcdcheck::gtkw_signals(g);
-    BOOST_TEST(names.size() > 20u);
-    for (const std::string& n : names) BOOST_TEST(p.full_names.count(n) == 1u, n);
+    BOOST_TEST(g.find("dut.imap_top.u_cp.mcycle[63:0]") != std::string::npos);
+    BOOST_TEST(g.find("dut.imap_top.u_array.g_pe[3].u_pe.regs[0][7:0]") != std::string::npos);
     fs::remove_all(d);
 }
 

@@ -162,8 +162,11 @@ Subcommand register_bench(CLI::App& app) {
             std::printf("  executor SIMD path: %s\n",
                         imap::isa::to_string(imap::isa::default_simd_path()));
             const ModelTimes tlm = time_model("tlm", o->runs);
-            ModelTimes rtl;
-            if (model_names().find("rtl") != std::string::npos) rtl = time_model("rtl", o->runs);
+            ModelTimes rtl, lock;
+            if (model_names().find("rtl") != std::string::npos) {
+                rtl = time_model("rtl", o->runs);
+                lock = time_model("lockstep", o->runs);
+            }
             const StreamTimes st = time_stream(o->stream_frames, o->runs);
 
             // golden, in process, on the same inputs as run's default
@@ -191,6 +194,8 @@ Subcommand register_bench(CLI::App& app) {
             const double tlm_cps = static_cast<double>(tlm.cycles) / tlm_wall;
             const double rtl_wall = rtl.available ? median(rtl.wall_s) : 0.0;
             const double rtl_cps = rtl.available ? static_cast<double>(rtl.cycles) / rtl_wall : 0.0;
+            const double lock_cps =
+                lock.available ? static_cast<double>(lock.cycles) / median(lock.wall_s) : 0.0;
 
             std::printf("\n  modeled time            %10.3f ms   (paper: 85 ms)\n", tlm.modeled_ms);
             std::printf("  cycles                  %10llu\n",
@@ -221,6 +226,11 @@ Subcommand register_bench(CLI::App& app) {
                     "cycles)\n",
                     rtl_cps, static_cast<unsigned long long>(rtl.cycles));
                 std::printf("  TLM/RTL speed           %10.1f\n", tlm_cps / rtl_cps);
+                std::printf(
+                    "  lockstep cycles/s       %10.3g      (TLM and RTL compared at "
+                    "every instruction)\n",
+                    lock_cps);
+                print_rtl_area();
             } else {
                 std::printf("  RTL                     not built in this binary\n");
             }
@@ -257,6 +267,8 @@ Subcommand register_bench(CLI::App& app) {
                 j["rtl_cycles_per_s"] = rtl.available ? nlohmann::json(rtl_cps) : nlohmann::json();
                 j["tlm_over_rtl"] =
                     rtl.available ? nlohmann::json(tlm_cps / rtl_cps) : nlohmann::json();
+                j["lockstep_cycles_per_s"] =
+                    lock.available ? nlohmann::json(lock_cps) : nlohmann::json();
                 j["golden_ms"] = golden_ms;
                 j["tlm_over_golden"] = tlm_wall * 1e3 / golden_ms;
                 j["phases"] = tlm.phases;

@@ -361,7 +361,7 @@ Subcommand register_exec(CLI::App& app) {
             std::fflush(stdout);
 
             ExecResult r;
-            WaveSession waves(o->waves, cfg, prog, false);
+            WaveSession waves(o->waves, cfg, prog);
             try {
 #ifdef IMAPSIM_HAVE_TLM
                 if (o->model == "tlm") {

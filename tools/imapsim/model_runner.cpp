@@ -7,13 +7,14 @@
 #include "imap/tlm/system.hpp"
 #endif
 #ifdef IMAPSIM_HAVE_RTL
+#include "imap/rtl/area.hpp"
 #include "imap/rtl/lockstep.hpp"
 #include "imap/rtl/system.hpp"
 #endif
 #ifdef IMAPSIM_HAVE_WAVES
+#include <filesystem>
 #include <memory>
 
-#include "imap/waves/cycle_trace.hpp"
 #include "imap/waves/isa_trace.hpp"
 #endif
 
@@ -70,28 +71,71 @@ std::string model_names() {
     s += "tlm (SystemC TLM-2.0), ";
 #endif
 #ifdef IMAPSIM_HAVE_RTL
-    s += "rtl (SystemC cycle-accurate, signal level), lockstep (tlm and rtl side by side, state "
-         "compared per instruction), ";
+    s += "rtl (the verilated register-transfer design), lockstep (tlm and rtl side by side, "
+         "compared at every retired instruction), ";
 #endif
     return s + "core (the bare instruction-set executor)";
 }
 
+void print_rtl_area() {
+#ifdef IMAPSIM_HAVE_RTL
+    const imap::rtl::SynthFigures& s = imap::rtl::synthesis();
+    if (!s.available) {
+        std::printf("  RTL area                not synthesized (no yosys in this build)\n");
+        return;
+    }
+    std::printf(
+        "  RTL area (yosys, generic cells): %llu cells per PE, %llu per CP; %llu + %llu "
+        "memory bits\n",
+        static_cast<unsigned long long>(s.pe.cells), static_cast<unsigned long long>(s.cp.cells),
+        static_cast<unsigned long long>(s.pe.memory_bits),
+        static_cast<unsigned long long>(s.cp.memory_bits));
+#endif
+}
+
 namespace {
 RtlFlags g_rtl_flags;
+
+#if defined(IMAPSIM_HAVE_RTL) && defined(IMAPSIM_HAVE_WAVES)
+// --vcd with --model rtl: the design's own signals (Verilator tracing); the
+// selection of PEs and the window as for the other models, the signal
+// groups mapped onto the design's hierarchy (docs/rtl.md, "Waves").
+imap::rtl::RtlWaves rtl_waves(const std::string& path, const imap::waves::TraceSelection& s) {
+    imap::rtl::RtlWaves w;
+    w.path = path;
+    w.t0 = s.t0;
+    w.t1 = s.t1 == UINT64_MAX ? UINT64_MAX : s.t1 - 1;
+    w.pes = s.pes;
+    if (s.cp) w.groups.push_back("cp"), w.groups.push_back("board");
+    if (s.ring || s.mask) w.groups.push_back("array");
+    if (s.regs || s.mem) w.groups.push_back("pe");
+    return w;
 }
+
+void print_rtl_waves(const imap::rtl::RtlWaves& w) {
+    if (w.path.empty()) return;
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(w.path, ec);
+    std::printf("  waves -> %s (%.2f MB, the design's signals) + %s\n", w.path.c_str(),
+                ec ? 0.0 : static_cast<double>(bytes) / 1048576.0,
+                imap::rtl::gtkw_path(w.path).c_str());
+}
+#endif
+}  // namespace
 
 void add_rtl_flags(CLI::App* app, RtlFlags& f) {
     const char* grp = "RTL / lockstep (docs/rtl.md)";
-    app->add_option("--lockstep-interval", f.lockstep_interval,
-                    "--model lockstep: compare the state every N instructions [default: 1]")
-        ->group(grp);
     app->add_option("--inject-fault", f.inject_fault,
                     "--model rtl / lockstep: XOR MASK into register REG (rN, c, t, m) of PE "
                     "after instruction INSTR, RTL side only: INSTR:PE:REG:MASK")
         ->group(grp);
-    app->add_option("--rtl-trace-pes", f.trace_pes,
-                    "--model rtl / lockstep: PEs with per-PE signals, a:b (inclusive) or "
-                    "'none' [default: all]")
+    app->add_option("--rtl-mutant", f.mutant,
+                    "--model rtl / lockstep: run the mutation-check model with this planted bug "
+                    "(docs/rtl.md)")
+        ->group(grp);
+    app->add_option("--lockstep-waves", f.lockstep_waves,
+                    "--model lockstep: waves (.vcd / .fst) of the RTL before a divergence, '' = "
+                    "none [default: rtl_divergence.vcd]")
         ->group(grp);
 }
 
@@ -147,11 +191,10 @@ struct WaveSession::Impl {
     WaveFlags flags;
     imap::waves::TraceSelection sel;
     std::unique_ptr<imap::waves::IsaTracer> tracer;
-    std::unique_ptr<imap::waves::CycleTracer> cycle_tracer;  // --model rtl: per cycle
 };
 
 WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig& cfg,
-                         const isa::Program& prog, bool per_cycle)
+                         const isa::Program& prog)
     : impl_(std::make_unique<Impl>()) {
     if (f.vcd.empty()) return;
     impl_->flags = f;
@@ -169,10 +212,7 @@ WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig& cfg,
                              est / 1048576.0, sel.limit_name.c_str());
         }
         impl_->sel = sel;
-        if (per_cycle)
-            impl_->cycle_tracer = std::make_unique<imap::waves::CycleTracer>(f.vcd, cfg, prog, sel);
-        else
-            impl_->tracer = std::make_unique<imap::waves::IsaTracer>(f.vcd, cfg, prog, sel);
+        impl_->tracer = std::make_unique<imap::waves::IsaTracer>(f.vcd, cfg, prog, sel);
     } catch (const imap::waves::WaveError& e) {
         throw UserError(e.what());
     }
@@ -181,15 +221,11 @@ WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig& cfg,
 WaveSession::~WaveSession() = default;
 
 bool WaveSession::active() const {
-    return impl_->tracer || impl_->cycle_tracer;
+    return impl_->tracer != nullptr;
 }
 
 isa::Observer* WaveSession::observer() {
     return impl_->tracer.get();
-}
-
-void* WaveSession::cycle_tracer() {
-    return impl_->cycle_tracer.get();
 }
 
 void WaveSession::finish(uint64_t end_cycle) {
@@ -197,20 +233,7 @@ void WaveSession::finish(uint64_t end_cycle) {
     const w::TraceSelection& sel = impl_->sel;
     uint64_t traced = 0;
     std::string what;
-    if (impl_->cycle_tracer) {
-        w::CycleTracer& t = *impl_->cycle_tracer;
-        try {
-            t.finish(end_cycle);
-        } catch (const w::WaveError& e) {
-            throw UserError(std::string("--vcd: ") + e.what());
-        }
-        traced = t.traced_cycles();
-        std::printf(
-            "  waves -> %s (%.2f MB, %llu cycles traced%s) + %s\n", t.vcd_path().c_str(),
-            static_cast<double>(t.bytes()) / 1048576.0, static_cast<unsigned long long>(traced),
-            t.limit_reached() ? ", stopped at --trace-limit-mb" : "", t.gtkw_path().c_str());
-        what = "cycle";
-    } else if (impl_->tracer) {
+    if (impl_->tracer) {
         w::IsaTracer& t = *impl_->tracer;
         try {
             t.finish(end_cycle);
@@ -252,7 +275,7 @@ void WaveSession::finish(uint64_t end_cycle) {
 }
 #else
 struct WaveSession::Impl {};
-WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig&, const isa::Program&, bool)
+WaveSession::WaveSession(const WaveFlags& f, const isa::MachineConfig&, const isa::Program&)
     : impl_(std::make_unique<Impl>()) {
     if (!f.vcd.empty()) throw UserError("--vcd: this imapsim has no waves library");
 }
@@ -261,9 +284,6 @@ bool WaveSession::active() const {
     return false;
 }
 isa::Observer* WaveSession::observer() {
-    return nullptr;
-}
-void* WaveSession::cycle_tracer() {
     return nullptr;
 }
 void WaveSession::finish(uint64_t) {}
@@ -276,7 +296,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     run.model = model;
     if (waves && !waves->vcd.empty() && model != "tlm" && model != "core" && model != "rtl")
         throw UserError(
-            "--vcd traces --model tlm or core (per instruction) or rtl (per cycle); "
+            "--vcd traces --model tlm or core (per instruction) or rtl (the design's signals); "
             "trace the models of a lockstep run one at a time (--model " +
             model + " cannot write one)");
     try {
@@ -288,9 +308,24 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
     run.program_words = prog.code.size();
     run.program = prog;
     run.source = fw::frame_source(p, run.plan);
-    WaveSession session(waves ? *waves : WaveFlags{}, cfg, prog, model == "rtl");
+    // --model rtl writes the design's own waves (Verilator tracing); the
+    // other models trace the instruction-set machine per instruction.
+    const bool rtl_waves_on = model == "rtl" && waves && !waves->vcd.empty();
+    WaveSession session(waves && !rtl_waves_on ? *waves : WaveFlags{}, cfg, prog);
     isa::Observer* observer = session.observer();
     auto finish_waves = [&](uint64_t end_cycle) { session.finish(end_cycle); };
+#ifdef IMAPSIM_HAVE_WAVES
+    imap::waves::TraceSelection rtl_sel;
+    if (rtl_waves_on) {
+        check_output_file("--vcd", waves->vcd, false);
+        try {
+            rtl_sel = imap::waves::parse_trace_selection(waves->pes, waves->window, waves->signals,
+                                                         waves->limit_mb, cfg);
+        } catch (const imap::waves::WaveError& e) {
+            throw UserError(e.what());
+        }
+    }
+#endif
     try {
 #ifdef IMAPSIM_HAVE_RTL
         if (model == "rtl" || model == "lockstep") {
@@ -300,45 +335,51 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
             try {
                 if (!rf.inject_fault.empty())
                     lc.rtl.inject = rtl::parse_fault_injection(rf.inject_fault);
-                if (rf.trace_pes == "none") {
-                    lc.rtl.trace_pe_count = 0;
-                } else if (!rf.trace_pes.empty()) {
-                    int a = 0, b = 0;
-                    char colon = 0;
-                    if (std::sscanf(rf.trace_pes.c_str(), "%d%c%d", &a, &colon, &b) != 3 ||
-                        colon != ':' || b < a)
-                        throw isa::ConfigError("invalid value '" + rf.trace_pes +
-                                               "' for --rtl-trace-pes: expected a:b or none");
-                    lc.rtl.trace_pe_first = a;
-                    lc.rtl.trace_pe_count = b - a + 1;
-                }
-                lc.interval = rf.lockstep_interval;
+                lc.rtl.mutant = rf.mutant;
+                lc.divergence_waves = rf.lockstep_waves;
                 lc.validate(cfg);
+#ifdef IMAPSIM_HAVE_WAVES
+                if (model == "rtl" && waves && !waves->vcd.empty()) {
+                    lc.rtl.waves = rtl_waves(waves->vcd, rtl_sel);
+                    lc.rtl.waves.validate(cfg);
+                }
+#endif
+                rtl::check_runnable(cfg, !lc.rtl.waves.path.empty(), !lc.rtl.mutant.empty(),
+                                    prog.code.size(), prog.phases.size());
             } catch (const isa::ConfigError& e) {
-                throw UserError(e.what());
+                throw UserError(std::string("--model ") + model + ": " + e.what());
             }
             imap::tlm::OutputImages out;
             fw::FrameResult& r = run.result;
             if (model == "rtl") {
+                rtl::RtlRunResult rr;
+                try {
+                    rr =
+                        rtl::run_rtl(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
+                                     fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
+                } catch (const isa::Fault&) {
 #ifdef IMAPSIM_HAVE_WAVES
-                lc.rtl.cycle_tracer =
-                    static_cast<imap::waves::CycleTracer*>(session.cycle_tracer());
+                    print_rtl_waves(lc.rtl.waves);
 #endif
-                const rtl::RtlRunResult rr =
-                    rtl::run_rtl(cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
-                                 fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
+                    throw;
+                }
+#ifdef IMAPSIM_HAVE_WAVES
+                print_rtl_waves(lc.rtl.waves);
+#endif
                 r = fw::frame_result(run.plan, prog, rr, std::move(out.image[0].pixels));
+                std::printf("  RTL design: configuration %s, %llu clocks\n",
+                            rr.configuration.c_str(), static_cast<unsigned long long>(rr.clocks));
+                print_rtl_area();
             } else {
                 const rtl::LockstepResult lr = rtl::run_lockstep(
                     cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
                     fw::to_video_image(right), roi.w, roi.h, &out, lc);
                 if (lr.diverged) throw UserError(lr.divergence.message(), kExitMismatch);
                 std::printf(
-                    "  lockstep: TLM and RTL agree: %llu state records compared (every %llu "
-                    "instructions of %llu), cycles TLM %llu = RTL %llu\n",
-                    static_cast<unsigned long long>(lr.compared),
-                    static_cast<unsigned long long>(lc.interval),
+                    "  lockstep: TLM and RTL agree at all %llu retired instructions (%llu "
+                    "compared), cycles TLM %llu = RTL %llu\n",
                     static_cast<unsigned long long>(lr.instructions),
+                    static_cast<unsigned long long>(lr.compared),
                     static_cast<unsigned long long>(lr.tlm.cycles),
                     static_cast<unsigned long long>(lr.rtl.cycles));
                 r = fw::frame_result(run.plan, prog, lr.rtl, std::move(out.image[0].pixels));

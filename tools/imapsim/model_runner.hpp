@@ -33,22 +33,25 @@ imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
 // --model rtl / lockstep options (docs/rtl.md). set_rtl_flags() hands them
 // to run_model (kept out of its signature).
 struct RtlFlags {
-    uint64_t lockstep_interval = 1;
     std::string inject_fault;  // INSTR:PE:REG:MASK
-    std::string trace_pes;     // a:b, none, or empty = all
+    std::string mutant;        // planted bug (mutation-check configuration)
+    std::string lockstep_waves = "rtl_divergence.vcd";  // waves before a divergence, "" none
 };
 void add_rtl_flags(CLI::App* app, RtlFlags& f);
 void set_rtl_flags(const RtlFlags& f);
 
-std::string model_names();                  // "tlm, core" ...
+std::string model_names();  // "tlm, core" ...
+// The RTL design's synthesized area (cells per PE and per CP), one line;
+// nothing when the binary has no RTL.
+void print_rtl_area();
 void check_model_name(const std::string&);  // UserError if unknown
 
 struct ModelRun {
     std::string model;
     imap::firmware::FramePlan plan;
     size_t program_words = 0;
-    imap::isa::Program program;              // the program that ran
-    std::string source;  // its generated source (constants, plan macros, .include of dp.s)
+    imap::isa::Program program;  // the program that ran
+    std::string source;          // its generated source (constants, plan macros, .include of dp.s)
     imap::firmware::FrameResult result;
 };
 
@@ -70,13 +73,12 @@ void check_wave_outputs(const WaveFlags& f);
 class WaveSession {
   public:
     WaveSession(const WaveFlags& f, const imap::isa::MachineConfig& cfg,
-                const imap::isa::Program& prog, bool per_cycle);
+                const imap::isa::Program& prog);
     ~WaveSession();
     WaveSession(const WaveSession&) = delete;
     WaveSession& operator=(const WaveSession&) = delete;
     bool active() const;
     imap::isa::Observer* observer();  // ISA-level tracer (core, tlm), or nullptr
-    void* cycle_tracer();             // imap::waves::CycleTracer* (rtl), or nullptr
     void finish(uint64_t end_cycle);
 
   private:

@@ -1,7 +1,9 @@
-// Parameters of the RTL model that are not parameters of the machine (the
-// machine itself is configured by isa::MachineConfig, as for the TLM model):
-// which PEs and registers get per-PE signals, and the fault-injection hook
-// used to check the lockstep co-simulation.
+// Parameters of an RTL run that are not parameters of the machine (the
+// machine is configured by isa::MachineConfig, as for the TLM model): the
+// waves of the design's own signals, the fault-injection hook that checks
+// the lockstep co-simulation, and the planted bug of the mutation check.
+// The configurations of the design this build holds (PE count and memory
+// sizes are HDL parameters) and how to get another.
 #pragma once
 
 #include <cstdint>
@@ -10,16 +12,13 @@
 
 #include "imap/isa/config.hpp"
 
-namespace imap::waves {
-class CycleObserver;  // imap/waves/cycle_trace.hpp
-}
-
 namespace imap::rtl {
 
 // XOR `mask` into one piece of PE state of the RTL model right after the
 // instruction with index `instruction` (0-based, in execution order, counting
 // every executed instruction including zero-cost `phase`) retires. Applied to
-// the RTL model only: the lockstep co-simulation must catch it.
+// the RTL model only (through the testbench's backdoor): the lockstep
+// co-simulation must catch it.
 struct FaultInjection {
     static constexpr int kRegC = -1;  // carry flag
     static constexpr int kRegT = -2;  // test flag
@@ -37,25 +36,62 @@ FaultInjection parse_fault_injection(const std::string& spec);
 // Name of a register of FaultInjection::reg ("r5", "C", "T", "M").
 std::string reg_name(int reg);
 
-struct RtlConfig {
-    // PEs that get per-PE signals (top.array.pe_<i>, top.ring.link_<i>):
-    // trace_pe_first .. trace_pe_first + trace_pe_count - 1; a count of -1
-    // means "up to the last PE", 0 means none.
-    int trace_pe_first = 0;
-    int trace_pe_count = -1;
-    // PE registers that get a signal in each traced PE; empty = all.
-    std::vector<int> trace_regs;
-    FaultInjection inject;
-    // Per-cycle waves: when set, the clocked process calls it once per clock
-    // edge of the run (not owned; nullptr = no tracing, no cost).
-    waves::CycleObserver* cycle_tracer = nullptr;
-
-    // Throws isa::ConfigError naming the parameter, the value and the range.
-    void validate(const isa::MachineConfig& cfg) const;
-    // Resolved range (after validate): [first, first + count).
-    int traced_first(const isa::MachineConfig& cfg) const;
-    int traced_count(const isa::MachineConfig& cfg) const;
-    std::vector<int> traced_regs(const isa::MachineConfig& cfg) const;
+// The planted bugs of the mutation check (docs/rtl.md, "Mutation check"),
+// built into the mutation-check configuration only (IMAP_RTL_MUTANTS).
+struct Mutant {
+    uint32_t id;
+    const char* name;
+    const char* what;
 };
+const std::vector<Mutant>& mutants();
+// Throws isa::ConfigError for an unknown name (listing the known ones).
+uint32_t mutant_id(const std::string& name);
+
+// Waves of the design's own signals (Verilator tracing): needs a traced
+// variant of the configuration (IMAP_RTL_TRACE_CONFIGS).
+struct RtlWaves {
+    std::string path;  // .vcd or .fst (by the extension); empty = no waves
+    // machine cycles [t0, t1] (inclusive); the whole run by default
+    uint64_t t0 = 0, t1 = UINT64_MAX;
+    // PEs with their datapath in the waves (empty = all); the CP, the array
+    // level (ring links, mask bus) and the board are always in.
+    std::vector<int> pes;
+    // groups: "cp", "array", "board", "pe" (empty = all)
+    std::vector<std::string> groups;
+    // Verilator's dumpvars prefixes for this selection (under `top`, the
+    // model's SystemC name); a prefix ending in '!' selects that scope's own
+    // signals only, not the units below it.
+    std::vector<std::string> scopes(const std::string& top, int pes_total) const;
+    void validate(const isa::MachineConfig& cfg) const;
+};
+
+// The GTKWave view written next to a waves file (extension replaced by .gtkw).
+std::string gtkw_path(const std::string& waves_path);
+
+struct RtlConfig {
+    FaultInjection inject;
+    RtlWaves waves;
+    std::string mutant;  // planted bug by name (mutation-check configuration), "" none
+    void validate(const isa::MachineConfig& cfg) const;
+};
+
+// ---- configurations of this build ------------------------------------------
+struct ConfigName {
+    int pes = 0;
+    uint32_t mem_bytes = 0, ext_bytes = 0;
+};
+// Every configuration verilated into this build ("p256_m1024_x65536" ...),
+// with its variants (fast, vcd, fst, mut).
+std::vector<std::string> built_configurations();
+bool has_configuration(const isa::MachineConfig& cfg);
+// Throws isa::ConfigError when cfg cannot run on the RTL of this build: an
+// unbuilt configuration (the message gives the exact command that builds
+// it), or a run-time parameter beyond what the HDL of every configuration
+// holds (registers, mask and return stacks, the transfer path's rows per
+// cycle, program size, phases). `needs_waves`: a traced variant is needed.
+void check_runnable(const isa::MachineConfig& cfg, bool needs_waves = false,
+                    bool needs_mutants = false, size_t program_words = 0, size_t phases = 0);
+// The command that adds the configuration of cfg to a build.
+std::string build_command(const isa::MachineConfig& cfg, bool traced = false);
 
 }  // namespace imap::rtl

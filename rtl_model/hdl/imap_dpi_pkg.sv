@@ -1,0 +1,39 @@
+// Simulation-only interfaces of the design (not synthesized): the trace port
+// (retire record and the write taps of every architectural state element),
+// the video line port of the board's camera/display interface and the
+// fault report. Each is a DPI-C import implemented by the SystemC testbench
+// (rtl_model/verif); the calls are made only when the testbench has set the
+// `trace` strap (retire record, write taps), so an untraced run pays one
+// branch per write.
+package imap_dpi_pkg;
+  // One retired instruction (the CP's retire record): index counts every
+  // retired instruction from 0, cyc is the machine cycle at its issue and
+  // cyc_end after its last cycle. cwr: CP register written (creg >= 0).
+  import "DPI-C" function void imap_rtl_retire(
+    input longint index, input int pc, input longint word, input longint cyc,
+    input longint cyc_end, input int phase, input int creg, input int cval,
+    input int msp, input int csp, input int active, input bit halted);
+  // A CP param-block word written (cst).
+  import "DPI-C" function void imap_rtl_param_write(input int addr, input int value);
+  // PE state written at this edge: what bit 0 = register rd <= val,
+  // bit 1 = C, bit 2 = T, bit 3 = M (new values c, t, m).
+  import "DPI-C" function void imap_rtl_pe_write(
+    input int pe, input int what, input int rd, input int val, input bit c, input bit t,
+    input bit m);
+  // A local-memory byte of PE `pe` written.
+  import "DPI-C" function void imap_rtl_pe_mem(input int pe, input int addr, input int val);
+  // An external-memory byte of PE `pe` written.
+  import "DPI-C" function void imap_rtl_ext_mem(input int pe, input int addr, input int val);
+  // The fault that stopped the machine (code: imap_pkg::fault_t).
+  import "DPI-C" function void imap_rtl_fault(
+    input int code, input int pc, input longint cyc, input int pe, input longint addr);
+
+  // Video line port: status 0 = ok, 1 = no image on that port, 2 = line
+  // outside the image. vid_check is asked when vin / vout enters execute;
+  // vid_pixel returns pixel x of line y (0 beyond the width); vid_put
+  // writes one pixel of an output line (ignored beyond the width).
+  import "DPI-C" function int imap_rtl_vid_check(input int dir_out, input int port, input int y);
+  import "DPI-C" function int imap_rtl_vid_pixel(input int port, input int y, input int x);
+  import "DPI-C" function void imap_rtl_vid_put(input int port, input int y, input int x,
+                                                 input int val);
+endpackage
