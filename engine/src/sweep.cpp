@@ -599,8 +599,8 @@ std::vector<std::string> header_lines(const Plan& p, const Executor* ex) {
         std::snprintf(b, sizeof b, "%*s  ", static_cast<int>(w[i]), p.swept[i].name.c_str());
         h += b;
     }
-    std::snprintf(b, sizeof b, "%10s %10s %8s %8s  %-17s %7s  %s", "cycles", "modeled ms", "fps",
-                  "local B", "dominant phase", "wall s", "result");
+    std::snprintf(b, sizeof b, "%10s %10s %8s %8s %8s  %-17s %7s  %s", "cycles", "modeled ms",
+                  "fps", "local B", "Mcells", "dominant phase", "wall s", "result");
     out.push_back(h + b);
     return out;
 }
@@ -638,11 +638,12 @@ std::string row_line(const Plan& p, const Row& r) {
             break;
     }
     const bool ran = r.ran();
-    std::snprintf(b, sizeof b, "%10s %10s %8s %8s  %-17s %7s  ",
+    std::snprintf(b, sizeof b, "%10s %10s %8s %8s %8s  %-17s %7s  ",
                   ran ? std::to_string(r.run->cycles).c_str() : "-",
                   ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-",
                   ran ? fmt("%.2f", r.fps()).c_str() : "-",
                   r.local_bytes >= 0 ? std::to_string(r.local_bytes).c_str() : "-",
+                  ran && r.run->area ? fmt("%.2f", r.run->area->cells / 1e6).c_str() : "-",
                   ran ? dominant_text(*r.run).c_str() : "-",
                   r.run && r.run->wall_s > 0 ? fmt("%.2f", r.run->wall_s).c_str() : "-");
     return l + b + result;

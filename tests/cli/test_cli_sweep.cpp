@@ -532,3 +532,33 @@ BOOST_AUTO_TEST_CASE(ctrl_c_writes_partial_results) {
     BOOST_TEST(j.at("rows").size() == rows.size() - 1);
     BOOST_TEST(j.at("points_finished").get<size_t>() + j.at("not_run").get<size_t>() == 293u);
 }
+
+BOOST_AUTO_TEST_CASE(area_column_grows_with_the_pe_count) {
+    // The sweep's area column: the yosys figures of the design's PE and CP
+    // scaled to each point's machine (every model reports them; CI has yosys).
+    const fs::path d = tmpdir() / "area";
+    fs::create_directories(d);
+    const fs::path csv = d / "a.csv", rep = d / "r.json";
+    const Result r =
+        run("sweep --model core --roi-size 32x16 --D 8 --pes 8,16 --csv " + csv.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    BOOST_TEST(r.out.find("Mcells") != std::string::npos);
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 2u);
+    BOOST_REQUIRE(!rows[0].at("area_cells").empty());
+    const uint64_t c8 = std::stoull(rows[0].at("area_cells"));
+    const uint64_t c16 = std::stoull(rows[1].at("area_cells"));
+    const uint64_t m8 = std::stoull(rows[0].at("area_memory_bits"));
+    const uint64_t m16 = std::stoull(rows[1].at("area_memory_bits"));
+    // Eight more PEs: eight more PE cells, eight more PEs' registers and memory.
+    const Result one =
+        run("run --model core --size 32x16 --roi 0,0,32,16 --D 8 --pes 8 --report " + rep.string());
+    BOOST_REQUIRE_EQUAL(one.code, 0);
+    const nlohmann::json j = nlohmann::json::parse(slurp(rep));
+    const uint64_t pe = j.at("area").at("pe_cells").get<uint64_t>();
+    BOOST_TEST(pe > 100u);
+    BOOST_TEST(j.at("area").at("cells").get<uint64_t>() == c8);
+    BOOST_TEST(c16 - c8 == 8 * pe);
+    BOOST_TEST(m16 - m8 == 8u * (8u * 16u + 8u * 1024u));
+}

@@ -505,6 +505,20 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
+#ifdef IMAPSIM_HAVE_RTL
+    // Silicon of this machine configuration: the design's PE and CP as
+    // synthesized by yosys, scaled to cfg (docs/rtl.md, "Synthesis"); a
+    // property of the configuration, so every model reports it (the sweep's
+    // area column).
+    if (imap::rtl::synthesis().available) {
+        const imap::rtl::ArrayArea a = imap::rtl::array_area(cfg);
+        j["area"] = {{"cells", a.cells},
+                     {"memory_bits", a.memory_bits},
+                     {"pe_cells", a.pe_cells},
+                     {"cp_cells", a.cp_cells},
+                     {"ext_bits", a.ext_bits}};
+    }
+#endif
     nlohmann::json prm;
     prm["algorithm"] = algo_params_json(p);
     prm["algorithm"]["roi"] = {roi.x0, roi.y0, roi.w, roi.h};
