@@ -1,3 +1,4 @@
+#include "imap/tlm/sanitizer.hpp"
 #include "imap/rtl/lockstep.hpp"
 
 #include <chrono>
@@ -104,6 +105,7 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     };
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);

@@ -1,3 +1,4 @@
+#include "imap/tlm/sanitizer.hpp"
 #include "imap/rtl/system.hpp"
 
 #include <cstring>
@@ -226,6 +227,7 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
     RtlRunResult result;
     bench.job_done = [&](Job& j) { result = collect(j, bench, cfg, prog); };
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);
     if (job.waves_written) finish_waves(job, bench, cfg, "dut", rcfg.waves.pes);
     if (job.fault.valid) throw to_fault(job.fault, prog, cfg);

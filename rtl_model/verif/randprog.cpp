@@ -4,6 +4,7 @@
 #include <random>
 #include <sstream>
 
+#include "imap/tlm/sanitizer.hpp"
 #include "checker.hpp"
 #include "imap/rtl/random.hpp"
 #include "support.hpp"
@@ -1034,6 +1035,7 @@ SuiteResult run_random_suite(const SuiteOptions& opt) {
         res.cycles += j.cycles;
     };
     sc_core::sc_start();
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
     res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
 }
