@@ -256,11 +256,7 @@ Subcommand register_sweep(CLI::App& app) {
                     s.input.right = o->right;
                     const cv::Mat L = v::load_grey8(o->left, "left image");
                     const cv::Mat R = v::load_grey8(o->right, "right image");
-                    if (L.size() != R.size())
-                        throw UserError(
-                            "left and right images differ in size: " + std::to_string(L.cols) +
-                            "x" + std::to_string(L.rows) + " vs " + std::to_string(R.cols) + "x" +
-                            std::to_string(R.rows));
+                    check_same_size(o->left, L.cols, L.rows, o->right, R.cols, R.rows);
                     s.input.width = L.cols;
                     s.input.height = L.rows;
                     if (has_roi) {
