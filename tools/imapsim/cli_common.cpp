@@ -34,6 +34,17 @@ long long parse_int_flag(const std::string& flag, const std::string& text, long 
     return v;
 }
 
+void parse_size_flag(const std::string& flag, const std::string& text, int lo, int hi, int* w,
+                     int* h) {
+    const auto x = text.find('x');
+    if (x == std::string::npos || text.find('x', x + 1) != std::string::npos)
+        throw UserError("invalid value '" + text + "' for " + flag +
+                        ": expected WxH with W and H in " + std::to_string(lo) + ".." +
+                        std::to_string(hi));
+    *w = static_cast<int>(parse_int_flag(flag + " width", text.substr(0, x), lo, hi));
+    *h = static_cast<int>(parse_int_flag(flag + " height", text.substr(x + 1), lo, hi));
+}
+
 double parse_real_flag(const std::string& flag, const std::string& text, double lo, double hi,
                        bool lo_open) {
     std::ostringstream range;

@@ -81,6 +81,11 @@ std::string faster_assumptions_text(const imap::isa::MachineConfig& cfg);
 long long parse_int_flag(const std::string& flag, const std::string& text, long long lo,
                          long long hi);
 
+// Strict WxH parse of a size flag (one 'x', both parts integers in lo..hi);
+// the error names the flag and the range.
+void parse_size_flag(const std::string& flag, const std::string& text, int lo, int hi, int* w,
+                     int* h);
+
 // Strict real-number parse of a flag value (finite, lo < v <= hi when
 // lo_open, else lo <= v <= hi); the error names the flag and the range.
 double parse_real_flag(const std::string& flag, const std::string& text, double lo, double hi,

@@ -48,14 +48,6 @@ struct StreamOptions {
     MachineFlags machine;
 };
 
-void parse_size(const std::string& text, int* w, int* h) {
-    const auto x = text.find('x');
-    if (x == std::string::npos)
-        throw UserError("invalid value '" + text + "' for --size: expected WxH (16..4096 each)");
-    *w = static_cast<int>(parse_int_flag("--size width", text.substr(0, x), 16, 4096));
-    *h = static_cast<int>(parse_int_flag("--size height", text.substr(x + 1), 16, 4096));
-}
-
 }  // namespace
 
 Subcommand register_stream(CLI::App& app) {
@@ -172,7 +164,7 @@ Subcommand register_stream(CLI::App& app) {
             if (o->frames_dir.empty() && o->left_video.empty()) {
                 spec.synthetic =
                     static_cast<int>(parse_int_flag("--synthetic", o->synthetic, 1, 1000000));
-                parse_size(o->size, &spec.width, &spec.height);
+                parse_size_flag("--size", o->size, 16, 4096, &spec.width, &spec.height);
                 spec.seed = static_cast<uint64_t>(parse_int_flag("--seed", o->seed, 0, INT64_MAX));
             }
             es::OpenedSource opened = es::open_source(spec);

@@ -43,14 +43,6 @@ uint64_t parse_seed(const std::string& text) {
     return static_cast<uint64_t>(s);
 }
 
-void parse_size(const std::string& text, int* w, int* h) {
-    const auto x = text.find('x');
-    if (x == std::string::npos || text.find('x', x + 1) != std::string::npos)
-        throw UserError("invalid value '" + text +
-                        "' for --size: expected WxH with W and H in 2..4096");
-    *w = static_cast<int>(parse_int_flag("--size width", text.substr(0, x), 2, 4096));
-    *h = static_cast<int>(parse_int_flag("--size height", text.substr(x + 1), 2, 4096));
-}
 }  // namespace
 
 Subcommand register_synth(CLI::App& app) {
@@ -70,7 +62,7 @@ Subcommand register_synth(CLI::App& app) {
     return {sub, [o]() {
                 const uint64_t seed = parse_seed(o->seed);
                 int w = 0, h = 0;
-                parse_size(o->size, &w, &h);
+                parse_size_flag("--size", o->size, 2, 4096, &w, &h);
                 int frames = 0;
                 if (!o->frames.empty()) {
                     frames = static_cast<int>(parse_int_flag("--frames", o->frames, 1, kMaxFrames));
