@@ -477,6 +477,42 @@ int seg_width(const FramePlan& fp, int g) {
     return std::min(fp.P, fp.roi.w - g * fp.P);
 }
 
+// Skewed rows (docs/firmware.md, section 5): when the ring holds the lines'
+// PEs and a video row per line shifted by `span` lanes per line, every line's
+// items share one displacement per pixel: W rounds of at most ~W/2 hops
+// instead of rounds over the span of all lines. The lines sit so that the
+// input displacements d = base + kind - x are centred on 0, the output
+// displacements likewise (skew_out).
+void plan_skew(FramePlan& fp, int span) {
+    Relayout& rl = fp.rl;
+    if (fp.nseg != 1) return;
+    const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
+    int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
+    for (int kind = 0; kind < span; ++kind) {
+        int a = 0, n = 0;
+        in_lanes(fp.f, P, 0, W, kind, &a, &n);
+        if (n == 0) continue;
+        lo = std::min(lo, kind - (a + n - 1));
+        hi = std::max(hi, kind - a);
+    }
+    if (lo > hi) return;
+    const int base = std::max(0, -((lo + hi) / 2));
+    // output: kind - x over the map pixels (pixel x leaves the PE of parity x & 1)
+    const int olo = span == 2 ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
+    const int skew_out = std::max(0, base + (olo + ohi) / 2);
+    const int rows = span * (H - 1) + W;  // lanes spanned by the skewed rows
+    if (base + span * H > P || rows > P || skew_out + rows > P) return;
+    rl.skew = true;
+    rl.base = base;
+    rl.skew_in = 0;
+    rl.skew_out = skew_out;
+    rl.dmin = base + lo;
+    rl.dmax = base + hi;
+    rl.smin = base - skew_out + olo;
+    rl.smax = base - skew_out + ohi;
+    rl.ur = rl.ul = 0;
+}
+
 }  // namespace
 
 void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop_in,
@@ -686,6 +722,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
             rl.ur = hr + 1;
             rl.ul = hl;
         }
+        plan_skew(fp, span);
     }
 
     // Video rows and the output rows: free memory outside the constant
@@ -877,6 +914,12 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "BP", fp.rl.base);
     equ(os, "UR", fp.rl.ur);
     equ(os, "UL", fp.rl.ul);
+    equ(os, "SKEW", fp.rl.skew ? 1 : 0);
+    equ(os, "SKI", fp.rl.skew_in);
+    equ(os, "SKO", fp.rl.skew_out);
+    equ(os, "SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin);
+    equ(os, "DMIN", fp.rl.dmin);
+    equ(os, "DMAX", fp.rl.dmax);
     dp_macros(os, fp.f);
     // Per-segment re-layout calls: segment, width, receiver lanes of both kinds.
     os << ".macro PLAN_IN\n";
@@ -895,7 +938,10 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         // displacement sigma = sender - receiver of the output items
         int smin = INT_MAX, smax = INT_MIN;
         const int span = fp.f.bidir ? 2 : 1;
-        if (fp.rl.modular) {
+        if (fp.rl.skew) {
+            smin = fp.rl.smin;
+            smax = fp.rl.smax;
+        } else if (fp.rl.modular) {
             // one displacement per class mod P (and of one parity in bidir mode)
             if (span == 2) {
                 smin = -fp.P / 2 + 1;
