@@ -11,7 +11,7 @@ namespace imap::firmware {
 
 namespace {
 
-constexpr int kKBlockSize = 32;  // per-PE constant block (dp_setup.inc checks it)
+constexpr int kKBlockSize = 10;  // per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
 constexpr int kNever = INT_MAX;
 
 int ceil_div(int a, int b) {
@@ -525,6 +525,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
         return std::min(d, P - d);
     };
     auto pe_of = [&](int y, int kind) { return ((fp.rl.base + span * y + kind) % P + P) % P; };
+    // lane of pixel x of line y in the video rows (input) and the output rows
+    auto soff = [&](int y) { return fp.rl.skew ? fp.rl.skew_in + span * y : 0; };
+    auto ooff = [&](int y) { return fp.rl.skew ? fp.rl.skew_out + span * y : 0; };
     // Pixels X of image img (0 = left, 1 = right) that kind `kind` needs: [lo, hi].
     auto need = [&](int img, int kind, int* lo, int* hi) {
         *lo = 0;
@@ -565,25 +568,25 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                             int lo, hi;
                             need(img, kind, &lo, &hi);
                             if (X < lo || X > hi) continue;
-                            best = std::min(best, ring(pe_of(y, kind), x));
+                            best = std::min(best, ring(pe_of(y, kind), x + soff(y)));
                             ++cnt;
                         }
                         if (cnt) hops += best + (cnt - 1);
                     }
-                    int ob = ring(pe_of(y, 0), x);
-                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x));
+                    int ob = ring(pe_of(y, 0), x + ooff(y));
+                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x + ooff(y)));
                     ohops += ob;
                 }
             int64_t cut = 0, ocut = 0;
             for (int a = 0; a < P; a += step)
                 for (int len = step; len < P; len += step) {
                     auto inside = [&](int q) { return ((q - a) % P + P) % P < len; };
-                    const int lanes_in = overlap(0, W - 1, a, len);
                     int64_t c_in = 0, c_out = 0;
                     for (int y = 0; y < H; ++y) {
+                        const int so = soff(y);
                         bool kin[2] = {inside(pe_of(y, 0)), span == 2 && inside(pe_of(y, 1))};
                         if (!kin[0] && !kin[1]) {
-                            c_out += lanes_in;
+                            c_out += overlap(ooff(y), ooff(y) + W - 1, a, len);
                             continue;
                         }
                         for (int img = 0; img < 2; ++img) {
@@ -604,9 +607,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                             int hole = 0;
                             if (f.bidir && img == 1 && kin[0] && kin[1]) {
                                 const int xs = f.s - X0;
-                                if (xs >= lo && xs <= hi) hole = inside(xs) ? 0 : 1;
+                                if (xs >= lo && xs <= hi) hole = inside(xs + so) ? 0 : 1;
                             }
-                            c_in += (hi - lo + 1) - overlap(lo, hi, a, len) - hole;
+                            c_in += (hi - lo + 1) - overlap(lo + so, hi + so, a, len) - hole;
                         }
                     }
                     cut = std::max(cut, c_in);
