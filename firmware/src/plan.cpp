@@ -11,7 +11,8 @@ namespace imap::firmware {
 
 namespace {
 
-constexpr int kKBlockSize = 10;  // per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
+// per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
+constexpr int kKBlockSize = 10;
 constexpr int kNever = INT_MAX;
 
 int ceil_div(int a, int b) {

@@ -25,7 +25,7 @@ struct Measured {
 };
 
 Measured run_case(const g::Params& p, int W, int H, int P) {  // NOLINT
-    std::mt19937 rng(uint32_t(W * 131 + H * 7));  // the same frame at every P
+    std::mt19937 rng(uint32_t(W * 131 + H * 7));              // the same frame at every P
     const Frame fr = random_frame(rng, W, H, p.D);
     isa::MachineConfig cfg;
     cfg.pes = uint32_t(P);
@@ -35,8 +35,8 @@ Measured run_case(const g::Params& p, int W, int H, int P) {  // NOLINT
     const isa::Program prog = fw::assemble_frame(p, m.plan);
     m.r = fw::run_frame_core(m.plan, prog, g::ImageView{fr.L.data(), W, H, W},
                              g::ImageView{fr.R.data(), W, H, W}, cfg);
-    const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), W, H, W},
-                                            g::ImageView{fr.R.data(), W, H, W}, roi);
+    const g::DisparityMap want =
+        g::compute(p, g::ImageView{fr.L.data(), W, H, W}, g::ImageView{fr.R.data(), W, H, W}, roi);
     BOOST_REQUIRE(m.r.map.data == want.data);  // every what-if point is bit-exact
     return m;
 }
@@ -97,8 +97,8 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_a_frame_down) {
         for (int P = 16; P <= 1024; P *= 2) {
             const Measured m = run_case(p, c.W, c.H, P);
             BOOST_TEST_MESSAGE(c.W << "x" << c.H << " D=16 P=" << P << ": " << m.r.cycles);
-            BOOST_TEST(m.r.cycles <= prev, c.W << "x" << c.H << " P=" << P << ": " << m.r.cycles
-                                                << " > " << prev);
+            BOOST_TEST(m.r.cycles <= prev,
+                       c.W << "x" << c.H << " P=" << P << ": " << m.r.cycles << " > " << prev);
             prev = m.r.cycles;
         }
     }
@@ -121,8 +121,8 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_the_headline_down) {
             const Measured m = run_case(p, 128, 128, P);
             const uint64_t rl = m.r.relayout_in + m.r.relayout_out;
             const uint64_t t = bidir ? m.r.cycles : m.r.cycles - phase(m.r, "spill");
-            BOOST_TEST_MESSAGE("128x128 D=64 " << (bidir ? "bidir" : "single") << " P=" << P
-                                               << ": " << m.r.cycles << " (in " << m.r.relayout_in
+            BOOST_TEST_MESSAGE("128x128 D=64 " << (bidir ? "bidir" : "single") << " P=" << P << ": "
+                                               << m.r.cycles << " (in " << m.r.relayout_in
                                                << ", out " << m.r.relayout_out << ", spill "
                                                << phase(m.r, "spill") << ")");
             BOOST_TEST(t <= prev, "P=" << P << ": " << t << " > " << prev);
