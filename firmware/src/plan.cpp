@@ -11,7 +11,8 @@ namespace imap::firmware {
 
 namespace {
 
-constexpr int kKBlockSize = 32;  // per-PE constant block (dp_setup.inc checks it)
+// per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
+constexpr int kKBlockSize = 10;
 constexpr int kNever = INT_MAX;
 
 int ceil_div(int a, int b) {
@@ -477,6 +478,42 @@ int seg_width(const FramePlan& fp, int g) {
     return std::min(fp.P, fp.roi.w - g * fp.P);
 }
 
+// Skewed rows (docs/firmware.md, section 5): when the ring holds the lines'
+// PEs and a video row per line shifted by `span` lanes per line, every line's
+// items share one displacement per pixel: W rounds of at most ~W/2 hops
+// instead of rounds over the span of all lines. The lines sit so that the
+// input displacements d = base + kind - x are centred on 0, the output
+// displacements likewise (skew_out).
+void plan_skew(FramePlan& fp, int span) {
+    Relayout& rl = fp.rl;
+    if (fp.nseg != 1) return;
+    const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
+    int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
+    for (int kind = 0; kind < span; ++kind) {
+        int a = 0, n = 0;
+        in_lanes(fp.f, P, 0, W, kind, &a, &n);
+        if (n == 0) continue;
+        lo = std::min(lo, kind - (a + n - 1));
+        hi = std::max(hi, kind - a);
+    }
+    if (lo > hi) return;
+    const int base = std::max(0, -((lo + hi) / 2));
+    // output: kind - x over the map pixels (pixel x leaves the PE of parity x & 1)
+    const int olo = span == 2 ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
+    const int skew_out = std::max(0, base + (olo + ohi) / 2);
+    const int rows = span * (H - 1) + W;  // lanes spanned by the skewed rows
+    if (base + span * H > P || rows > P || skew_out + rows > P) return;
+    rl.skew = true;
+    rl.base = base;
+    rl.skew_in = 0;
+    rl.skew_out = skew_out;
+    rl.dmin = base + lo;
+    rl.dmax = base + hi;
+    rl.smin = base - skew_out + olo;
+    rl.smax = base - skew_out + ohi;
+    rl.ur = rl.ul = 0;
+}
+
 }  // namespace
 
 void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop_in,
@@ -489,6 +526,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
         return std::min(d, P - d);
     };
     auto pe_of = [&](int y, int kind) { return ((fp.rl.base + span * y + kind) % P + P) % P; };
+    // lane of pixel x of line y in the video rows (input) and the output rows
+    auto soff = [&](int y) { return fp.rl.skew ? fp.rl.skew_in + span * y : 0; };
+    auto ooff = [&](int y) { return fp.rl.skew ? fp.rl.skew_out + span * y : 0; };
     // Pixels X of image img (0 = left, 1 = right) that kind `kind` needs: [lo, hi].
     auto need = [&](int img, int kind, int* lo, int* hi) {
         *lo = 0;
@@ -529,25 +569,25 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                             int lo, hi;
                             need(img, kind, &lo, &hi);
                             if (X < lo || X > hi) continue;
-                            best = std::min(best, ring(pe_of(y, kind), x));
+                            best = std::min(best, ring(pe_of(y, kind), x + soff(y)));
                             ++cnt;
                         }
                         if (cnt) hops += best + (cnt - 1);
                     }
-                    int ob = ring(pe_of(y, 0), x);
-                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x));
+                    int ob = ring(pe_of(y, 0), x + ooff(y));
+                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x + ooff(y)));
                     ohops += ob;
                 }
             int64_t cut = 0, ocut = 0;
             for (int a = 0; a < P; a += step)
                 for (int len = step; len < P; len += step) {
                     auto inside = [&](int q) { return ((q - a) % P + P) % P < len; };
-                    const int lanes_in = overlap(0, W - 1, a, len);
                     int64_t c_in = 0, c_out = 0;
                     for (int y = 0; y < H; ++y) {
+                        const int so = soff(y);
                         bool kin[2] = {inside(pe_of(y, 0)), span == 2 && inside(pe_of(y, 1))};
                         if (!kin[0] && !kin[1]) {
-                            c_out += lanes_in;
+                            c_out += overlap(ooff(y), ooff(y) + W - 1, a, len);
                             continue;
                         }
                         for (int img = 0; img < 2; ++img) {
@@ -568,9 +608,9 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                             int hole = 0;
                             if (f.bidir && img == 1 && kin[0] && kin[1]) {
                                 const int xs = f.s - X0;
-                                if (xs >= lo && xs <= hi) hole = inside(xs) ? 0 : 1;
+                                if (xs >= lo && xs <= hi) hole = inside(xs + so) ? 0 : 1;
                             }
-                            c_in += (hi - lo + 1) - overlap(lo, hi, a, len) - hole;
+                            c_in += (hi - lo + 1) - overlap(lo + so, hi + so, a, len) - hole;
                         }
                     }
                     cut = std::max(cut, c_in);
@@ -686,6 +726,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
             rl.ur = hr + 1;
             rl.ul = hl;
         }
+        plan_skew(fp, span);
     }
 
     // Video rows and the output rows: free memory outside the constant
@@ -877,6 +918,12 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "BP", fp.rl.base);
     equ(os, "UR", fp.rl.ur);
     equ(os, "UL", fp.rl.ul);
+    equ(os, "SKEW", fp.rl.skew ? 1 : 0);
+    equ(os, "SKI", fp.rl.skew_in);
+    equ(os, "SKO", fp.rl.skew_out);
+    equ(os, "SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin);
+    equ(os, "DMIN", fp.rl.dmin);
+    equ(os, "DMAX", fp.rl.dmax);
     dp_macros(os, fp.f);
     // Per-segment re-layout calls: segment, width, receiver lanes of both kinds.
     os << ".macro PLAN_IN\n";
@@ -895,7 +942,10 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         // displacement sigma = sender - receiver of the output items
         int smin = INT_MAX, smax = INT_MIN;
         const int span = fp.f.bidir ? 2 : 1;
-        if (fp.rl.modular) {
+        if (fp.rl.skew) {
+            smin = fp.rl.smin;
+            smax = fp.rl.smax;
+        } else if (fp.rl.modular) {
             // one displacement per class mod P (and of one parity in bidir mode)
             if (span == 2) {
                 smin = -fp.P / 2 + 1;

@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
         {"--clock-mhz 0", "clock_mhz"},
         {"--clock-mhz -5", "clock_mhz"},
         {"--mem-bytes 200", "does not fit"},
-        {"--ext-bytes 0", "does not fit"},
+        {"--D 128 --ext-bytes 0", "does not fit"},  // the headline D = 64 spills nothing
         {"--set ring_hop=0", "ring_hop"},
         {"--set nosuch=3", "nosuch"},
         {"--set indirect=off", "indirect"},

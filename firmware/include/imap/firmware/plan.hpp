@@ -131,6 +131,14 @@ struct Relayout {
     int base = 0;          // unrolled position of the first line's first PE
     int ur = 0, ul = 0;    // rounds of the rightward / leftward sweeps (input)
     int our = 0, oul = 0;  // rounds of the rightward / leftward sweeps (output)
+    // Skewed rows (the lines do not fill the ring, one segment): line y's
+    // video row comes in from column X0 - skew_in - span*y and goes out to
+    // column -(skew_out + span*y), so every line's items share one
+    // displacement per pixel: input rounds d = dmin .. dmax, output sigma =
+    // smin .. smax (step span).
+    bool skew = false;
+    int skew_in = 0, skew_out = 0;
+    int dmin = 0, dmax = 0, smin = 0, smax = 0;
     int64_t bound_in = 0, bound_out = 0;  // lower bound of the ring cycles, summed over batches
     int64_t hop_bound_in = 0, hop_bound_out = 0;  // the hop part of it (byte-hops / P)
 };
