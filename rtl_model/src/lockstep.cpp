@@ -1,5 +1,5 @@
-#include "imap/tlm/sanitizer.hpp"
 #include "imap/rtl/lockstep.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <chrono>
 #include <sstream>
@@ -68,8 +68,7 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     job.mutant = lcfg.rtl.mutant.empty() ? 0 : mutant_id(lcfg.rtl.mutant);
     if (lcfg.rtl.inject.enabled)
         chk.after_compare = [&](const RetireRecord& r) {
-            if (r.index == lcfg.rtl.inject.instruction)
-                inject(bench.backdoor(), lcfg.rtl.inject, &bench.shadow());
+            if (r.index == lcfg.rtl.inject.instruction) inject(bench.backdoor(), lcfg.rtl.inject);
         };
     int calls = 0;
     bench.next_job = [&]() -> Job* {
@@ -105,7 +104,8 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     };
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
-    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC
+                                                   // threads)
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);
