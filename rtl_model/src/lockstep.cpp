@@ -62,6 +62,7 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     std::unique_ptr<Model> rep(replay ? replay->make("replay") : nullptr);
     Bench bench("rtl", ci, std::move(dut), std::move(rep), cfg.clock_mhz);
     Checker chk(ref, prog, cfg.pes);
+    chk.reg_every = chk.mem_every = lcfg.full_compare_every;
     Job job;
     fill_job(job, cfg, prog, params, left, right, out_w, out_h);
     job.listener = &chk;
