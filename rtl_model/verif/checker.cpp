@@ -312,8 +312,26 @@ bool Checker::compare_state(const RetireRecord& r, const Shadow& s, const Backdo
     if (rd_field < static_cast<uint32_t>(NR) && static_cast<int>(rd_field) != rd_hw &&
         !compare_row(r, bd, NR, static_cast<int>(rd_field), ""))
         return false;
-    for (int f = NR; f < NR + 3; ++f)
-        if (!compare_row(r, bd, NR, f, "")) return false;
+    {  // C, T, M: two gathers (T and M share the design's st_q byte)
+        const isa::Machine& mm = ref_.machine();
+        flags_.resize(2 * P);
+        uint8_t* c = flags_.data();
+        uint8_t* st = c + P;
+        for (size_t p = 0; p < P; ++p) {
+            c[p] = *bd.carry[p];
+            st[p] = *bd.st[p];
+        }
+        const uint8_t* wc = mm.carry_lanes();
+        const uint8_t* wt = mm.test_lanes();
+        const uint8_t* wm = mm.mask_lanes();
+        uint8_t bad = 0;
+        for (size_t p = 0; p < P; ++p)
+            bad |= static_cast<uint8_t>(((c[p] & 1u) ^ wc[p]) | (((st[p] >> 1) & 1u) ^ wt[p]) |
+                                        ((st[p] & 1u) ^ wm[p]));
+        if (bad)
+            for (int f = NR; f < NR + 3; ++f)
+                if (!compare_row(r, bd, NR, f, "")) return false;
+    }
     const uint64_t re = reg_every ? reg_every : auto_reg_every(s.P, NR);
     const uint64_t me = mem_every ? mem_every : auto_mem_every(s.P, s.mem_bytes);
     auto since = [&](uint64_t every) {

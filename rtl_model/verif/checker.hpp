@@ -146,7 +146,7 @@ class Checker final : public Listener {
     // against the reference; false after a divergence
     bool compare_row(const RetireRecord& r, const Backdoor& bd, int NR, int reg,
                      const std::string& detail);
-    std::vector<uint8_t> row_;
+    std::vector<uint8_t> row_, flags_;
     Reference& ref_;
     const isa::Program& prog_;
     int prev_active_ = -1;
