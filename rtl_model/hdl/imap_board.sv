@@ -58,9 +58,6 @@ module imap_board
         if (i < int'(xe_n) && xe_wrow + 32'(i) < 32'(EXT_BYTES))
           for (int p = 0; p < P; p++) begin
             ext[(xe_wrow+32'(i))*32'(P)+32'(p)] = rrow[p][i*8+:8];
-`ifndef SYNTHESIS
-            if (trace) imap_rtl_ext_mem(p, int'(xe_wrow) + i, int'(rrow[p][i*8+:8]));
-`endif
           end
     if (xe_pf) begin
       for (int i = 0; i < XROWS; i++) begin

@@ -1,10 +1,11 @@
 // Simulation-only interfaces of the design (not synthesized): the trace port
-// (retire record and the write taps of every architectural state element),
-// the video line port of the board's camera/display interface and the
-// fault report. Each is a DPI-C import implemented by the SystemC testbench
-// (rtl_model/verif); the calls are made only when the testbench has set the
-// `trace` strap (retire record, write taps), so an untraced run pays one
-// branch per write.
+// (the CP's retire record and param-block writes), the video line port of
+// the board's camera/display interface and the fault report. Each is a DPI-C
+// import implemented by the SystemC testbench (rtl_model/verif); the trace
+// calls are made only when the testbench has set the `trace` strap. The PE
+// state (registers, flags, memories) is not reported through DPI: the
+// lockstep checker reads it from the design's public state elements at each
+// retire (rtl_model/verif/checker.cpp).
 package imap_dpi_pkg;
   // One retired instruction (the CP's retire record): index counts every
   // retired instruction from 0, cyc is the machine cycle at its issue and
@@ -15,15 +16,6 @@ package imap_dpi_pkg;
     input int msp, input int csp, input int active, input bit halted);
   // A CP param-block word written (cst).
   import "DPI-C" function void imap_rtl_param_write(input int addr, input int value);
-  // PE state written at this edge: what bit 0 = register rd <= val,
-  // bit 1 = C, bit 2 = T, bit 3 = M (new values c, t, m).
-  import "DPI-C" function void imap_rtl_pe_write(
-    input int pe, input int what, input int rd, input int val, input bit c, input bit t,
-    input bit m);
-  // A local-memory byte of PE `pe` written.
-  import "DPI-C" function void imap_rtl_pe_mem(input int pe, input int addr, input int val);
-  // An external-memory byte of PE `pe` written.
-  import "DPI-C" function void imap_rtl_ext_mem(input int pe, input int addr, input int val);
   // The fault that stopped the machine (code: imap_pkg::fault_t).
   import "DPI-C" function void imap_rtl_fault(
     input int code, input int pc, input longint cyc, input int pe, input longint addr);

@@ -61,10 +61,6 @@ module imap_pe
   logic [2:0] sh_rem;  // shifter: bits still to shift
   logic sh_c;  // shifter: last bit shifted out
 
-`ifndef SYNTHESIS
-  import imap_dpi_pkg::*;
-`endif
-
   // Temporaries of the clocked process (set at its start in every cycle).
   imap_pkg::cw_t w;
   imap_pkg::cwx_t wx;
@@ -223,16 +219,6 @@ module imap_pe
         if (!(act && w.t_we)) tn = st_q[ST];
         if (mwe) mem[ma] = mval;
         st_q <= {st_q[SOOB], tn, mn};
-`ifndef SYNTHESIS
-        if (w.trace) begin
-          if (wb || (act && (w.c_we || w.t_we)) || w.mask != imap_pkg::MK_NONE)
-            imap_rtl_pe_write(int'(pe_index),
-                              (wb ? 1 : 0) | ((act && w.c_we) ? 2 : 0) |
-                                  ((act && w.t_we) ? 4 : 0) | ((w.mask != imap_pkg::MK_NONE) ? 8 : 0),
-                              int'(w.rd), int'(res), c_q, tn, mn);
-          if (mwe) imap_rtl_pe_mem(int'(pe_index), int'(ma), int'(mval));
-        end
-`endif
       end
 
       // ---- 4. row bus: rows written (vin, xld), regardless of the mask
@@ -240,10 +226,6 @@ module imap_pe
         for (int i = 0; i < XROWS; i++)
           if (3'(i) < w.nrows) begin
             mem[wx.addr[AW-1:0]+AW'(i)] = row_in[i*8+:8];
-`ifndef SYNTHESIS
-            if (w.trace)
-              imap_rtl_pe_mem(int'(pe_index), int'(wx.addr[AW-1:0]) + i, int'(row_in[i*8+:8]));
-`endif
           end
 
       // ---- 5. preloads for the instruction entering execute, with the bypass

@@ -1,5 +1,5 @@
-#include "imap/tlm/sanitizer.hpp"
 #include "imap/rtl/lockstep.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <chrono>
 #include <sstream>
@@ -62,14 +62,14 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     std::unique_ptr<Model> rep(replay ? replay->make("replay") : nullptr);
     Bench bench("rtl", ci, std::move(dut), std::move(rep), cfg.clock_mhz);
     Checker chk(ref, prog, cfg.pes);
+    chk.reg_every = chk.mem_every = lcfg.full_compare_every;
     Job job;
     fill_job(job, cfg, prog, params, left, right, out_w, out_h);
     job.listener = &chk;
     job.mutant = lcfg.rtl.mutant.empty() ? 0 : mutant_id(lcfg.rtl.mutant);
     if (lcfg.rtl.inject.enabled)
         chk.after_compare = [&](const RetireRecord& r) {
-            if (r.index == lcfg.rtl.inject.instruction)
-                inject(bench.backdoor(), lcfg.rtl.inject, &bench.shadow());
+            if (r.index == lcfg.rtl.inject.instruction) inject(bench.backdoor(), lcfg.rtl.inject);
         };
     int calls = 0;
     bench.next_job = [&]() -> Job* {
@@ -105,7 +105,8 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     };
     const auto t0 = std::chrono::steady_clock::now();
     sc_core::sc_start();
-    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC
+                                                   // threads)
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);

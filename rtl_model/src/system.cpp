@@ -1,5 +1,5 @@
-#include "imap/tlm/sanitizer.hpp"
 #include "imap/rtl/system.hpp"
+#include "imap/tlm/sanitizer.hpp"
 
 #include <cstring>
 #include <stdexcept>
@@ -36,7 +36,7 @@ const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rc
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
             c.trace == trace && (c.mutants != 0) == mut)
             return c;
-    throw isa::ConfigError(trace == 2 ? "RTL: FST waves need the FST variant of the configuration"
+    throw isa::ConfigError(trace == 2   ? "RTL: FST waves need the FST variant of the configuration"
                            : trace == 1 ? "RTL: VCD waves need the VCD variant of the configuration"
                                         : "RTL: configuration not built");
 }
@@ -82,10 +82,10 @@ RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg
     // the design's performance counters as isa::Stats (sequencer kinds in
     // the order of isa::CostClass: see imap_pkg::kind_t)
     static const isa::CostClass kind_class[12] = {
-        isa::CostClass::Cp,     isa::CostClass::Alu,    isa::CostClass::MinMax,
-        isa::CostClass::Shift,  isa::CostClass::Mem,    isa::CostClass::Indirect,
-        isa::CostClass::Ring,   isa::CostClass::Mask,   isa::CostClass::Status,
-        isa::CostClass::Video,  isa::CostClass::Xfer,   isa::CostClass::Phase};
+        isa::CostClass::Cp,    isa::CostClass::Alu,  isa::CostClass::MinMax,
+        isa::CostClass::Shift, isa::CostClass::Mem,  isa::CostClass::Indirect,
+        isa::CostClass::Ring,  isa::CostClass::Mask, isa::CostClass::Status,
+        isa::CostClass::Video, isa::CostClass::Xfer, isa::CostClass::Phase};
     r.stats.instructions = j.instructions;
     for (int k = 0; k < 12; ++k)
         r.stats.class_cycles[static_cast<size_t>(kind_class[k])] += bd.kind_cyc[k];
@@ -118,8 +118,9 @@ RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg
 class Injector final : public Listener {
   public:
     Injector(Bench& b, const FaultInjection& f) : b_(b), f_(f) {}
-    Verdict on_retire(const RetireRecord& r, const Shadow&, const Touched&) override {
-        if (r.index == f_.instruction) inject(b_.backdoor(), f_, &b_.shadow());
+    Verdict on_retire(const RetireRecord& r, const Shadow&, const Backdoor&,
+                      const Touched&) override {
+        if (r.index == f_.instruction) inject(b_.backdoor(), f_);
         return Verdict::Go;
     }
     Verdict on_fault(const FaultRecord&, const Shadow&) override { return Verdict::Go; }
@@ -129,7 +130,7 @@ class Injector final : public Listener {
     FaultInjection f_;
 };
 
-void inject(Backdoor& bd, const FaultInjection& f, Shadow* s) {
+void inject(Backdoor& bd, const FaultInjection& f) {
     const size_t p = static_cast<size_t>(f.pe);
     if (f.reg >= 0)
         bd.regs[p][f.reg] ^= f.mask;
@@ -139,12 +140,6 @@ void inject(Backdoor& bd, const FaultInjection& f, Shadow* s) {
         *bd.st[p] ^= 2u;
     else
         *bd.st[p] ^= 1u;
-    if (s) {
-        uint8_t* lane = f.reg >= 0 ? s->reg(f.reg) : f.reg == FaultInjection::kRegC ? s->carry()
-                        : f.reg == FaultInjection::kRegT                          ? s->test()
-                                                                                  : s->mask();
-        lane[p] ^= f.reg >= 0 ? f.mask : uint8_t{1};
-    }
 }
 
 void finish_waves(const Job& j, const Bench& b, const isa::MachineConfig& cfg,
@@ -227,7 +222,8 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
     RtlRunResult result;
     bench.job_done = [&](Job& j) { result = collect(j, bench, cfg, prog); };
     sc_core::sc_start();
-    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC
+                                                   // threads)
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);
     if (job.waves_written) finish_waves(job, bench, cfg, "dut", rcfg.waves.pes);
     if (job.fault.valid) throw to_fault(job.fault, prog, cfg);

@@ -39,10 +39,6 @@ void Shadow::reset(int P_, int NR_, uint32_t mem_bytes_, uint32_t ext_bytes_) {
     NR = NR_;
     mem_bytes = mem_bytes_;
     ext_bytes = ext_bytes_;
-    lanes.assign(static_cast<size_t>(NR + 3) * P, 0);
-    std::fill(mask(), mask() + P, uint8_t{1});
-    mem.assign(static_cast<size_t>(mem_bytes) * P, 0);
-    ext.assign(static_cast<size_t>(ext_bytes) * P, 0);
     creg.fill(0);
     param.fill(0);
     msp = csp = 0;
@@ -96,7 +92,9 @@ Bench::Bench(sc_core::sc_module_name name, const ConfigInfo& cfg, std::unique_pt
     SC_METHOD(clock);
 }
 
-Bench::~Bench() { set_dpi_bench(nullptr); }
+Bench::~Bench() {
+    set_dpi_bench(nullptr);
+}
 
 void Bench::drive_straps(Ports& p, const Job& j) {
     const isa::CostTable& c = j.cfg.costs;
@@ -133,9 +131,9 @@ void Bench::clear_state(Backdoor& b) {
 // bench's bound for "the model stopped making progress".
 static uint64_t max_instruction_cycles(const isa::MachineConfig& cfg) {
     const isa::CostTable& c = cfg.costs;
-    uint64_t m = std::max<uint64_t>({c.cp, c.alu + 6ull, c.alu + uint64_t{c.minmax_extra},
-                                     c.mem + uint64_t{c.indirect_extra}, c.mask, c.status,
-                                     c.video_line});
+    uint64_t m =
+        std::max<uint64_t>({c.cp, c.alu + 6ull, c.alu + uint64_t{c.minmax_extra},
+                            c.mem + uint64_t{c.indirect_extra}, c.mask, c.status, c.video_line});
     m = std::max<uint64_t>(m, 65535ull * c.ring_hop);
     m = std::max<uint64_t>(m, c.xfer_cycles(cfg.mem_bytes, static_cast<uint64_t>(cfg.pes)));
     return m + c.branch_taken;
@@ -190,8 +188,7 @@ void Bench::run_job(Slot& s, Job& j, bool replay) {
     last_progress_ = clocks_;
     last_mcycle_ = last_instret_ = 0;
     p.rst_n = true;
-    while (!p.done.read() && !stop_ && j.error.empty())
-        wait(p.done.posedge_event() | finished_ev_);
+    while (!p.done.read() && !stop_ && j.error.empty()) wait(p.done.posedge_event() | finished_ev_);
     while ((pending_ || pending_fault_) && !stop_ && j.error.empty()) wait(processed_ev_);
     j.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     j.clocks = clocks_ - c0;
@@ -267,9 +264,10 @@ void Bench::check_progress(Slot& s, Job& j) {
         last_instret_ = ir;
         last_progress_ = clocks_;
     } else if (s.ports->rst_n.read() && clocks_ - last_progress_ > (1u << 20)) {
-        j.error = "the RTL model stopped making progress (no machine cycle and no retired "
-                  "instruction in 2^20 clocks, machine cycle " +
-                  std::to_string(mc) + ")";
+        j.error =
+            "the RTL model stopped making progress (no machine cycle and no retired "
+            "instruction in 2^20 clocks, machine cycle " +
+            std::to_string(mc) + ")";
         finished_ev_.notify(sc_core::SC_ZERO_TIME);
     }
     if (mc > cycle_budget_) {
@@ -282,7 +280,8 @@ void Bench::check_progress(Slot& s, Job& j) {
 bool Bench::process_pending() {
     Listener* l = job_ ? job_->listener : nullptr;
     if (pending_) {
-        Listener::Verdict v = l ? l->on_retire(pending_rec_, shadow_, touched_) : Listener::Verdict::Go;
+        Listener::Verdict v =
+            l ? l->on_retire(pending_rec_, shadow_, bd_, touched_) : Listener::Verdict::Go;
         if (v == Listener::Verdict::Wait) return false;
         pending_ = false;
         touched_.clear();
@@ -373,30 +372,6 @@ void Bench::dpi_param(int addr, uint32_t v) {
     touched_.param = true;
 }
 
-void Bench::dpi_pe_write(int pe, int what, int rd, int val, bool c, bool t, bool m) {
-    if (!tracing_ || pe < 0 || pe >= shadow_.P) return;
-    if ((what & 1) && rd >= 0 && rd < shadow_.NR) shadow_.reg(rd)[pe] = static_cast<uint8_t>(val);
-    if (what & 2) shadow_.carry()[pe] = c;
-    if (what & 4) shadow_.test()[pe] = t;
-    if (what & 8) shadow_.mask()[pe] = m;
-}
-
-void Bench::dpi_pe_mem(int pe, int addr, int val) {
-    if (!tracing_ || pe < 0 || pe >= shadow_.P || addr < 0 ||
-        static_cast<uint32_t>(addr) >= shadow_.mem_bytes)
-        return;
-    shadow_.mem[static_cast<size_t>(addr) * shadow_.P + pe] = static_cast<uint8_t>(val);
-    touched_.mem.emplace_back(pe, static_cast<uint32_t>(addr));
-}
-
-void Bench::dpi_ext_mem(int pe, int addr, int val) {
-    if (!tracing_ || pe < 0 || pe >= shadow_.P || addr < 0 ||
-        static_cast<uint32_t>(addr) >= shadow_.ext_bytes)
-        return;
-    shadow_.ext[static_cast<size_t>(addr) * shadow_.P + pe] = static_cast<uint8_t>(val);
-    touched_.ext.emplace_back(pe, static_cast<uint32_t>(addr));
-}
-
 void Bench::dpi_fault(const FaultRecord& f) {
     if (!tracing_) return;
     fault_rec_ = f;
@@ -416,8 +391,8 @@ int Bench::dpi_vid_pixel(int port, int y, int x) {
     if (!job_ || port < 0 || port > 1) return 0;
     const Image& im = job_->input[port];
     if (y < 0 || y >= im.height || x < 0 || x >= im.width) return 0;
-    return im.pixels[static_cast<size_t>(y) * static_cast<size_t>(im.width) +
-                     static_cast<size_t>(x)];
+    return im
+        .pixels[static_cast<size_t>(y) * static_cast<size_t>(im.width) + static_cast<size_t>(x)];
 }
 
 void Bench::dpi_vid_put(int port, int y, int x, int v) {

@@ -9,9 +9,9 @@
 // while the reference model catches up), the reset, the straps (the cost
 // table and the run-time configuration) and the host port that loads the
 // program and the param block; it is the video line port (camera and
-// display model) and the sink of the design's trace port: it applies the
-// write taps to a shadow of the architectural state and hands every
-// retire record to a Listener (the lockstep checker). It runs a queue of
+// display model) and the sink of the design's trace port: it keeps the CP
+// state the retire records report and hands every retire record, with the
+// backdoor into the design's state, to a Listener (the lockstep checker). It runs a queue of
 // jobs (programs), so one elaboration can run many programs (the random
 // suite).
 #pragma once
@@ -78,33 +78,23 @@ enum FaultCode {
 };
 const char* fault_code_name(int code);
 
-// The architectural state as written through the trace port.
+// The CP state as reported by the trace port (retire records, param
+// writes). The PE state (registers, flags, local and external memory) is not
+// reported: the checker reads it from the design through the Backdoor.
 struct Shadow {
     int P = 0, NR = 0;
     uint32_t mem_bytes = 0, ext_bytes = 0;
-    std::vector<uint8_t> lanes;  // register r of PE p at r * P + p, then C, T, M lanes
-    std::vector<uint8_t> mem;    // address-major: (pe, a) at a * P + pe
-    std::vector<uint8_t> ext;
     std::array<uint32_t, 16> creg{};
     std::array<uint32_t, 256> param{};
     int msp = 0, csp = 0;
     uint32_t phase = 0;
-    uint8_t* reg(int r) { return lanes.data() + static_cast<size_t>(r) * P; }
-    uint8_t* carry() { return reg(NR); }
-    uint8_t* test() { return reg(NR + 1); }
-    uint8_t* mask() { return reg(NR + 2); }
     void reset(int P, int NR, uint32_t mem_bytes, uint32_t ext_bytes);
 };
 
-// Locations written by the instruction being retired (from the taps).
+// What the trace port reported written by the instruction being retired.
 struct Touched {
-    std::vector<std::pair<int, uint32_t>> mem, ext;  // (pe, address)
     bool param = false;
-    void clear() {
-        mem.clear();
-        ext.clear();
-        param = false;
-    }
+    void clear() { param = false; }
 };
 
 // The design's state through the backdoor, in the RtlState layout.
@@ -122,9 +112,11 @@ class Listener {
   public:
     enum class Verdict { Go, Wait, Stop };
     virtual ~Listener() = default;
-    // After the taps of the instruction were applied to the shadow. Wait:
-    // the bench holds the clock and asks again when wake_event() fires.
-    virtual Verdict on_retire(const RetireRecord& r, const Shadow& s, const Touched& t) = 0;
+    // After the rising edge at which the instruction retired (the design's
+    // state, readable through `bd`, is the one after it). Wait: the bench
+    // holds the clock and asks again when wake_event() fires.
+    virtual Verdict on_retire(const RetireRecord& r, const Shadow& s, const Backdoor& bd,
+                              const Touched& t) = 0;
     virtual Verdict on_fault(const FaultRecord& f, const Shadow& s) = 0;
     virtual const sc_core::sc_event* wake_event() { return nullptr; }
 };
@@ -182,9 +174,6 @@ class Bench : public sc_core::sc_module {
     // trace-port sink (dpi.cpp)
     void dpi_retire(const RetireRecord& r);
     void dpi_param(int addr, uint32_t v);
-    void dpi_pe_write(int pe, int what, int rd, int val, bool c, bool t, bool m);
-    void dpi_pe_mem(int pe, int addr, int val);
-    void dpi_ext_mem(int pe, int addr, int val);
     void dpi_fault(const FaultRecord& f);
     int dpi_vid_check(int dir_out, int port, int y);
     int dpi_vid_pixel(int port, int y, int x);

@@ -1,6 +1,13 @@
-// The lockstep checker: compares the RTL's architectural state (the shadow
-// the bench keeps from the design's trace port) with a reference
-// instruction-set model at every retired instruction.
+// The lockstep checker: compares the RTL's architectural state with a
+// reference instruction-set model at every retired instruction. The CP state
+// comes from the design's retire record; the PE state is read from the
+// design's own state elements (Backdoor) right after the retire edge. Per
+// instruction it compares what the instruction can have written (the
+// register its rd field names in the design's register file, the C, T and M
+// flags, the memory rows of st / stx / vin / xld / xst); every
+// `reg_every` instructions all registers and flags, every `mem_every` the
+// whole local memory (a write to a place the instruction does not name),
+// and at the end the complete state (docs/rtl.md, "Lockstep").
 //
 // References: the TLM model (TlmReference: its CP thread waits in an
 // observer after each instruction until the RTL has retired the same one)
@@ -15,6 +22,7 @@
 #include <optional>
 #include <string>
 #include <systemc>
+#include <vector>
 
 #include "bench.hpp"
 #include "imap/isa/machine.hpp"
@@ -98,13 +106,26 @@ class TlmReference final : public sc_core::sc_module, public Reference, private 
 class Checker final : public Listener {
   public:
     Checker(Reference& ref, const isa::Program& prog, int pes);
-    Verdict on_retire(const RetireRecord& r, const Shadow& s, const Touched& t) override;
+    Verdict on_retire(const RetireRecord& r, const Shadow& s, const Backdoor& bd,
+                      const Touched& t) override;
     Verdict on_fault(const FaultRecord& f, const Shadow& s) override;
     const sc_core::sc_event* wake_event() override { return ref_.wake(); }
 
     // After the run: the cycle count, the complete final state (the shadow,
     // and the design's true state through the backdoor) and the faults.
     void final_check(const Job& job, const Shadow& s, const Backdoor& bd);
+
+    // Full compares of all registers and flags / the whole local memory every
+    // this many instructions (0: automatic, auto_intervals(); 1: every
+    // instruction). Set before the run.
+    uint64_t reg_every = 0, mem_every = 0;
+    // About 256 bytes of extra comparison per instruction on average: all
+    // (pe_regs + 3) lanes of P PEs every ceil(P * (pe_regs + 3) / 256)
+    // instructions, the P * mem_bytes local memory every
+    // ceil(P * mem_bytes / 256).
+    static uint64_t auto_reg_every(int pes, int pe_regs);
+    static uint64_t auto_mem_every(int pes, uint32_t mem_bytes);
+    uint64_t full_reg_compares = 0, full_mem_compares = 0;
 
     bool diverged = false;
     Divergence div;
@@ -119,7 +140,13 @@ class Checker final : public Listener {
   private:
     Verdict diverge(const RetireRecord* r, std::string what, int64_t pe, int64_t addr,
                     uint64_t refv, uint64_t rtlv, std::string detail = "");
-    bool compare_state(const RetireRecord& r, const Shadow& s, const Touched& t);
+    bool compare_state(const RetireRecord& r, const Shadow& s, const Backdoor& bd,
+                       const Touched& t);
+    // lane row `reg` of the design (0..NR-1 a register, NR C, NR+1 T, NR+2 M)
+    // against the reference; false after a divergence
+    bool compare_row(const RetireRecord& r, const Backdoor& bd, int NR, int reg,
+                     const std::string& detail);
+    std::vector<uint8_t> row_, flags_;
     Reference& ref_;
     const isa::Program& prog_;
     int prev_active_ = -1;

@@ -8,7 +8,9 @@ namespace imap::rtl::detail {
 namespace {
 Bench* g_bench = nullptr;
 }
-void set_dpi_bench(Bench* b) { g_bench = b; }
+void set_dpi_bench(Bench* b) {
+    g_bench = b;
+}
 }  // namespace imap::rtl::detail
 
 using imap::rtl::detail::g_bench;
@@ -36,18 +38,6 @@ void imap_rtl_retire(long long index, int pc, long long word, long long cyc, lon
 
 void imap_rtl_param_write(int addr, int value) {
     if (g_bench) g_bench->dpi_param(addr, static_cast<uint32_t>(value));
-}
-
-void imap_rtl_pe_write(int pe, int what, int rd, int val, svBit c, svBit t, svBit m) {
-    if (g_bench) g_bench->dpi_pe_write(pe, what, rd, val, c != 0, t != 0, m != 0);
-}
-
-void imap_rtl_pe_mem(int pe, int addr, int val) {
-    if (g_bench) g_bench->dpi_pe_mem(pe, addr, val);
-}
-
-void imap_rtl_ext_mem(int pe, int addr, int val) {
-    if (g_bench) g_bench->dpi_ext_mem(pe, addr, val);
 }
 
 void imap_rtl_fault(int code, int pc, long long cyc, int pe, long long addr) {

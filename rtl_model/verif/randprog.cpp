@@ -4,9 +4,9 @@
 #include <random>
 #include <sstream>
 
-#include "imap/tlm/sanitizer.hpp"
 #include "checker.hpp"
 #include "imap/rtl/random.hpp"
+#include "imap/tlm/sanitizer.hpp"
 #include "support.hpp"
 
 namespace imap::rtl {
@@ -991,6 +991,7 @@ SuiteResult run_random_suite(const SuiteOptions& opt) {
         ref = std::make_unique<StepReference>(cur.cfg, cur.prog, cur.params, cur.left, cur.right,
                                               cur.out_w, cur.out_h);
         chk = std::make_unique<Checker>(*ref, cur.prog, cur.cfg.pes);
+        chk->reg_every = chk->mem_every = opt.full_compare_every;
         active_before = opt.gen.pes;
         depth_before = 0;
         chk->on_compared = [&](const RetireRecord& r, const isa::Machine& m) {
@@ -1035,7 +1036,8 @@ SuiteResult run_random_suite(const SuiteOptions& opt) {
         res.cycles += j.cycles;
     };
     sc_core::sc_start();
-    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC threads)
+    imap::tlm::declare_main_stack_to_sanitizer();  // docs/testing.md (ASan and ended SystemC
+                                                   // threads)
     res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
 }

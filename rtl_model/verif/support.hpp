@@ -22,8 +22,8 @@ void fill_job(Job& j, const isa::MachineConfig& cfg, const isa::Program& prog,
 // The run's result from the job and the design's counters and state.
 RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg,
                      const isa::Program& prog);
-// XOR a fault into the design's state (backdoor) and, if given, the shadow.
-void inject(Backdoor& bd, const FaultInjection& f, Shadow* s = nullptr);
+// XOR a fault into the design's state (backdoor).
+void inject(Backdoor& bd, const FaultInjection& f);
 // After the wave writer closed: make the file reproducible (the FST
 // header's date is cleared). Throws std::runtime_error on an I/O error.
 void finish_waves_file(const std::string& path);

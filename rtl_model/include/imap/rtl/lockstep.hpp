@@ -29,6 +29,10 @@ struct LockstepConfig {
     // variant; otherwise the report says which option builds one.
     std::string divergence_waves = "rtl_divergence.vcd";
     uint64_t waves_cycles = 200;
+    // The checker's full compares of all PE registers and flags / the whole
+    // local memory every this many instructions (0: automatic, about 256
+    // bytes of comparison per instruction; docs/rtl.md, "Lockstep").
+    uint64_t full_compare_every = 0;
     void validate(const isa::MachineConfig& cfg) const;
 };
 
@@ -42,10 +46,10 @@ struct Divergence {
     int64_t pe = -1;       // PE index when the state is per PE
     int64_t address = -1;  // memory address when known
     uint64_t tlm_value = 0, rtl_value = 0;
-    std::string detail;        // free text (faults, ...)
+    std::string detail;             // free text (faults, ...)
     std::string reference = "TLM";  // the other side's name in the message
-    std::string waves;         // waves file written, or why not
-    std::string message() const;  // one line naming all of the above
+    std::string waves;              // waves file written, or why not
+    std::string message() const;    // one line naming all of the above
 };
 
 struct LockstepResult {

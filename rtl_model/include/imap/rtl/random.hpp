@@ -68,6 +68,11 @@ struct SuiteOptions {
     GenOptions gen;
     std::string mutant;  // planted bug (mutation-check model), "" = none
     bool stop_at_divergence = false;
+    // The checker's full compares of all PE registers and flags / the whole
+    // local memory every this many instructions (0: automatic, Checker's
+    // auto_reg_every / auto_mem_every; a huge value: only what each
+    // instruction names, and the final state).
+    uint64_t full_compare_every = 0;
 };
 
 struct SuiteResult {
