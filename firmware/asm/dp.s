@@ -15,6 +15,7 @@
 .include "dp_forward.inc"
 .include "dp_back.inc"
 .include "relayout.inc"
+.include "census.inc"
 
 .equ BATCH_IDX 255                  ; param word holding the current batch
 

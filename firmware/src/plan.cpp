@@ -19,7 +19,7 @@ int ceil_div(int a, int b) {
 }
 
 int wm_max(const golden::Params& p) {
-    return p.km * std::min(255, p.ad_max) + p.kb * p.gb;
+    return p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc;
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -266,20 +266,24 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     return true;
 }
 
-void check_options(const golden::Params& p) {
+void check_options(const golden::Params& p, bool census_ok) {
     // SPEC A.9 options the firmware does not run (docs/firmware.md, section 10):
     // refused up front, never a wrong map.
     const golden::Params off;
     std::string missing;
     auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
     if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
-    if (p.kc != off.kc) add("--kc " + std::to_string(p.kc));
+    if (p.kc != off.kc && !census_ok) add("--kc " + std::to_string(p.kc));
     if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
     if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
-                            " (it runs SPEC A.1-A.7 with --ad-max and --mode joint; needs "
-                            "--dissim ad, --kc 0, --agg-rx 0, --agg-ry 0; the golden runs all)");
+                            (census_ok ? " (it runs SPEC A.1-A.7 with --ad-max, --kc/--census and "
+                                         "--mode joint; needs --dissim ad, --agg-rx 0, --agg-ry 0; "
+                                         "the golden runs all)"
+                                       : " (the forward-pass test layout runs SPEC A.1-A.7 with "
+                                         "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
+                                         "--agg-rx 0, --agg-ry 0)"));
 }
 
 void check_range(const golden::Params& p) {
@@ -287,9 +291,9 @@ void check_range(const golden::Params& p) {
     const int64_t od = int64_t{p.Wo} + p.Wd;
     if (std::max(w, od) > kMaxSpread) {
         std::ostringstream os;
-        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb, Wo + Wd) = "
+        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb + 8*kc, Wo + Wd) = "
            << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
-           << "; lower --km, --kb, --gb, --Wo or --Wd)";
+           << "; lower --km, --kb, --gb, --kc, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
 }
@@ -313,7 +317,7 @@ uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t
 
 namespace {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny);
+                              bool tiny, bool census_ok);
 }
 
 golden::Params firmware_part(const golden::Params& p) {
@@ -324,7 +328,7 @@ golden::Params firmware_part(const golden::Params& p) {
 }
 
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
-    return plan_forward_impl(p, N, cfg, false);
+    return plan_forward_impl(p, N, cfg, false, false);
 }
 
 namespace {
@@ -364,9 +368,9 @@ bool place_tiny(ForwardPlan& f, int mem) {
 }
 
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny) {
+                              bool tiny, bool census_ok) {
     golden::validate_for_width(p, N);
-    check_options(p);
+    check_options(p, census_ok);
     check_range(p);
     ForwardPlan f;
     f.N = N;
@@ -409,6 +413,14 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     f.costl = f.rb + 2 + f.kl;
     f.costh = f.costl + p.D + 1;
     f.preg = f.costh + p.D + 1;
+    if (p.kc > 0) {
+        // census codes beside the line buffers, at their addresses + co
+        // (never reused for pointers: the region lies below the pointer region)
+        f.census = p.census;
+        f.kc = p.kc;
+        f.co = f.preg - (f.kblk + kKBlockSize);
+        f.preg += f.kr + f.kl + 2;
+    }
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     if (f.preg > mem) {
         std::ostringstream os;
@@ -591,7 +603,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
-    check_options(p);
+    check_options(p, true);
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
@@ -605,7 +617,13 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     // Too few lines per batch for the vote across batches: one line at a
     // time, every pointer table kept in the external memory.
     const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
-    fp.f = plan_forward_impl(p, roi.w, cfg, tiny);  // range and DP memory checks
+    if (p.kc > 0 && tiny)
+        throw FirmwareError(
+            "firmware: --kc " + std::to_string(p.kc) +
+            " (census) needs the ROI's lines in one batch: " + std::to_string(roi.h) +
+            " lines on " + std::to_string(fp.P) + " PEs run one line per batch (needs at least " +
+            std::to_string(2 * roi.h) + " PEs, or --kc 0)");
+    fp.f = plan_forward_impl(p, roi.w, cfg, tiny, true);  // range and DP memory checks
     if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {
         std::ostringstream os;
@@ -643,6 +661,19 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
+    if (p.kc > 0 && fp.batches.size() > 1) {
+        std::ostringstream os;
+        os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << H
+           << " lines in one batch (the codes read the lines y-" << p.census << "..y+" << p.census
+           << " of the ROI): needs " << span * H << " PEs, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
+    if (p.kc > 0 && fp.nseg > 1) {
+        std::ostringstream os;
+        os << "firmware: --kc " << p.kc << " (census) needs the ROI's width in one video segment: "
+           << "needs " << roi.w << " PEs, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
 
     // Re-layout geometry: the lines fill the ring (and a segment holds at
     // most half of it): the routes take the shorter way round; else the
@@ -706,6 +737,21 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
         os << "does not fit: needs " << fp.inl + fp.hbmax
            << " bytes of local memory per PE for the video rows (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
+    }
+    if (f.census > 0) {
+        // census code rows (video layout): beside the pixel rows, clear of the
+        // code buffers the code re-layout writes (they end at preg)
+        const int rows = fp.split_in ? 1 : 2;
+        fp.cinl = std::max(f.preg, fp.inl + rows * fp.hbmax);
+        fp.cinr = fp.split_in ? fp.cinl : fp.cinl + fp.hbmax;
+        if (fp.cinl + rows * fp.hbmax > mem) {
+            std::ostringstream os;
+            os << "does not fit: needs " << fp.cinl + rows * fp.hbmax
+               << " bytes of local memory per PE for the census code rows (have " << mem
+               << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+        end = std::max(end, fp.cinl + rows * fp.hbmax);
     }
     // output rows: after the constant block, avoiding the map
     fp.out = kKBlockSize;
@@ -809,8 +855,10 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
         band = std::min(f.N, last + 1);
     }
     equ(os, "BANDE", band);
-    equ(os, "EXCHN",
-        f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
+    equ(os, "KC", f.kc);
+    equ(os, "CENSUS", f.census);
+    equ(os, "CO", f.co);
+    equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
@@ -873,6 +921,8 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "INR", fp.inr);
     equ(os, "OUT", fp.out);
     equ(os, "SPLIT_IN", fp.split_in ? 1 : 0);
+    equ(os, "CINL", fp.cinl);
+    equ(os, "CINR", fp.cinr);
     equ(os, "RMOD", fp.rl.modular ? 1 : 0);
     equ(os, "BP", fp.rl.base);
     equ(os, "UR", fp.rl.ur);
@@ -885,8 +935,8 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         int a0, n0, a1 = 0, n1 = 0;
         in_lanes(fp.f, fp.P, g, W, 0, &a0, &n0);
         if (fp.f.bidir) in_lanes(fp.f, fp.P, g, W, 1, &a1, &n1);
-        os << "        RELAYOUT_IN " << g << ", " << W << ", " << a0 << ", " << n0 << ", " << a1
-           << ", " << n1 << "\n";
+        os << (fp.f.census > 0 ? "        RELAYOUT_IN_CENSUS " : "        RELAYOUT_IN ") << g
+           << ", " << W << ", " << a0 << ", " << n0 << ", " << a1 << ", " << n1 << "\n";
     }
     os << ".endm\n";
     os << ".macro PLAN_OUT\n";
