@@ -47,6 +47,7 @@ tloop:
         DP_SETUP
         PLAN_IN
         DP_EXCHANGE
+        AGG_EXTEND
         DP_INIT
         cld     c0, [#TS0]
         cst     c0, [#TSLOT_CUR]
@@ -104,6 +105,7 @@ batch:
         DP_SETUP
         PLAN_IN
         DP_EXCHANGE
+        AGG_EXTEND
         DP_INIT
         DP_FORWARD
         DP_MEET

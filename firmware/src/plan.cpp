@@ -19,7 +19,8 @@ int ceil_div(int a, int b) {
 }
 
 int wm_max(const golden::Params& p) {
-    return p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc;
+    return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
+           (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -152,6 +153,17 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         fm.avail[p].assign(mem, kNever);
         fm.used[p].assign(mem, 0);
         for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
+        if (f.agg > 0) {
+            // the window copies: Rx[m], Lx[m] (and codes) die after column m + agg
+            for (int c = 0; c < (f.kc > 0 ? 2 : 1); ++c) {
+                const int off = c * f.cxo;
+                for (int m = 1 - f.agg; m <= f.kr + f.agg; ++m)
+                    fm.avail[p][f.rbr - m + off] = std::max(1, m + f.agg + 1);
+                for (int m = 1 - f.agg; m <= f.kl + f.agg; ++m)
+                    fm.avail[p][f.rbl + m + off] = std::max(1, m + f.agg + 1);
+            }
+            continue;
+        }
         for (int i = 0; i <= f.kr; ++i)
             fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
         for (int i = 0; i <= f.kl; ++i)
@@ -274,16 +286,18 @@ void check_options(const golden::Params& p, bool census_ok) {
     auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
     if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
     if (p.kc != off.kc && !census_ok) add("--kc " + std::to_string(p.kc));
-    if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
+    if (p.agg_rx != off.agg_rx && (!census_ok || p.agg_rx > 2))
+        add("--agg-rx " + std::to_string(p.agg_rx));
     if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
-                            (census_ok ? " (it runs SPEC A.1-A.7 with --ad-max, --kc/--census and "
-                                         "--mode joint; needs --dissim ad, --agg-rx 0, --agg-ry 0; "
-                                         "the golden runs all)"
-                                       : " (the forward-pass test layout runs SPEC A.1-A.7 with "
-                                         "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
-                                         "--agg-rx 0, --agg-ry 0)"));
+                            (census_ok
+                                 ? " (it runs SPEC A.1-A.7 with --ad-max, --kc/--census, --agg-rx "
+                                   "0..2 and --mode joint; needs --dissim ad, --agg-rx <= 2, "
+                                   "--agg-ry 0; the golden runs all)"
+                                 : " (the forward-pass test layout runs SPEC A.1-A.7 with "
+                                   "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
+                                   "--agg-rx 0, --agg-ry 0)"));
 }
 
 void check_range(const golden::Params& p) {
@@ -291,9 +305,10 @@ void check_range(const golden::Params& p) {
     const int64_t od = int64_t{p.Wo} + p.Wd;
     if (std::max(w, od) > kMaxSpread) {
         std::ostringstream os;
-        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb + 8*kc, Wo + Wd) = "
+        os << "firmware: cost spread max((2*agg-rx+1)*(2*agg-ry+1)*(km*min(255, ad-max) + "
+              "kb*gb + 8*kc), Wo + Wd) = "
            << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
-           << "; lower --km, --kb, --gb, --kc, --Wo or --Wd)";
+           << "; lower --km, --kb, --gb, --kc, --agg-rx, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
 }
@@ -420,6 +435,39 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.kc = p.kc;
         f.co = f.preg - (f.kblk + kKBlockSize);
         f.preg += f.kr + f.kl + 2;
+    }
+    f.rbr = f.rb;
+    f.rbl = f.rb + 1;
+    const int mem0 = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
+    if (p.agg_rx > 0) {
+        // The node reads extended, clamped copies of the line buffers (and
+        // codes): Rx[m], m = 1-a .. kr+a, at rbr - m, Lx[m], m = 1-a .. kl+a, at
+        // rbl + m, right after the constant block; then the costs. The
+        // re-layout's buffers (and codes) move to the top of the memory: they
+        // die when the copies are made (AGG_EXTEND, before the forward pass).
+        const int a = p.agg_rx;
+        f.agg = a;
+        const int lo = f.kblk + kKBlockSize;
+        f.rbr = lo + f.kr + a;
+        f.rbl = f.rbr + 2 * a;
+        const int se = f.rbl + f.kl + a + 1 - lo;
+        f.cxo = p.kc > 0 ? se : 0;
+        f.costl = lo + se * (p.kc > 0 ? 2 : 1);
+        f.costh = f.costl + p.D + 1;
+        f.preg = f.costh + p.D + 1;
+        const int s0 = f.kr + f.kl + 2;
+        f.agg_src = mem0 - s0 * (p.kc > 0 ? 2 : 1);
+        f.rb = f.agg_src + f.kr;
+        f.co = p.kc > 0 ? s0 : 0;
+        if (f.agg_src < f.costl) {
+            std::ostringstream os;
+            os << "does not fit: --agg-rx " << a << " needs at least "
+               << f.costl + s0 * (p.kc > 0 ? 2 : 1)
+               << " bytes of local memory per PE for the line buffers and their window copies "
+                  "(have "
+               << mem0 << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
     }
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     if (f.preg > mem) {
@@ -724,7 +772,9 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     const ForwardPlan& f = fp.f;
     const int mem = static_cast<int>(cfg.mem_bytes);
     int end = f.mem_needed;
-    fp.inl = f.costl;  // the cost planes and the pointer region are free during the input
+    // the cost planes and the pointer region are free during the input (with
+    // the window: the copies' region too, up to the re-layout's buffers)
+    fp.inl = f.agg > 0 ? f.kblk + kKBlockSize : f.costl;
     if (fp.inl + 2 * fp.hbmax <= mem) {
         fp.inr = fp.inl + fp.hbmax;
         end = std::max(end, fp.inl + 2 * fp.hbmax);
@@ -742,7 +792,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
         // census code rows (video layout): beside the pixel rows, clear of the
         // code buffers the code re-layout writes (they end at preg)
         const int rows = fp.split_in ? 1 : 2;
-        fp.cinl = std::max(f.preg, fp.inl + rows * fp.hbmax);
+        fp.cinl = f.agg > 0 ? fp.inl + rows * fp.hbmax : std::max(f.preg, fp.inl + rows * fp.hbmax);
         fp.cinr = fp.split_in ? fp.cinl : fp.cinl + fp.hbmax;
         if (fp.cinl + rows * fp.hbmax > mem) {
             std::ostringstream os;
@@ -752,6 +802,17 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
             throw FirmwareError(os.str());
         }
         end = std::max(end, fp.cinl + rows * fp.hbmax);
+    }
+    if (f.agg > 0) {
+        const int rows_end = f.census > 0 ? fp.cinr + fp.hbmax : fp.inr + fp.hbmax;
+        if (rows_end > f.agg_src) {
+            std::ostringstream os;
+            os << "does not fit: --agg-rx " << f.agg << " needs " << rows_end - f.agg_src + mem
+               << " bytes of local memory per PE for the video rows beside the line buffers (have "
+               << mem << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+        end = std::max(end, mem);
     }
     // output rows: after the constant block, avoiding the map
     fp.out = kKBlockSize;
@@ -858,10 +919,70 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "KC", f.kc);
     equ(os, "CENSUS", f.census);
     equ(os, "CO", f.co);
+    equ(os, "AGG", f.agg);
+    equ(os, "RBR", f.rbr);
+    equ(os, "RBL", f.rbl);
+    equ(os, "CNO", f.agg > 0 ? f.cxo : f.co);
     equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
+// Site of R'[m] / L'[m] of a kind (docs/firmware.md, sections 1 and 10).
+int site_r(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N - m;
+    return kind == 0 ? f.s - m : f.s + m;
+}
+int site_l(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N + f.D - 1 - m;
+    return kind == 0 ? f.s + f.D - 1 - m : f.s + m;
+}
+// Where the input re-layout stored pixel X of R / L (the holder kind: X <= s
+// on kind 0, X > s on kind 1; relayout.inc, RIN_RECV_INIT).
+int holder(const ForwardPlan& f, int X) {
+    return f.bidir && X > f.s ? 1 : 0;
+}
+int addr_r(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb - 1 - X;
+    if (f.joint) return h == 0 ? f.rb - 1 - X : f.rb - f.N + X;
+    return h == 0 ? f.rb - f.s + X : f.rb + f.s - X;
+}
+int addr_l(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb + 2 + X;
+    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
+    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+}
+
+// The extended, clamped line buffers of the aggregation window
+// (AGG_EXTEND in census.inc): one AGX line per destination byte, with the
+// source address of each kind and whether it is the kind's own byte (else
+// the partner's, one ring hop away).
+void agg_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_AGG\n";
+    if (f.agg > 0) {
+        auto clampx = [&](int X) { return std::max(0, std::min(f.N - 1, X)); };
+        for (int img = 0; img < 2; ++img) {
+            const int top = img == 0 ? f.kr : f.kl;
+            for (int m = 1 - f.agg; m <= top + f.agg; ++m) {
+                const int dest = img == 0 ? f.rbr - m : f.rbl + m;
+                os << "        AGX " << dest;
+                for (int kind = 0; kind < 2; ++kind) {
+                    const int kk = f.kinds == 2 ? kind : 0;
+                    const int X = clampx(img == 0 ? site_r(f, kk, m) : site_l(f, kk, m));
+                    const int src = img == 0 ? addr_r(f, X) : addr_l(f, X);
+                    os << ", " << src << ", " << (holder(f, X) == kk ? 1 : 0);
+                }
+                os << "\n";
+            }
+        }
+    }
+    os << ".endm\n";
+}
+
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
+    agg_macros(os, f);
     os << ".macro PLAN_FORWARD\n";
     size_t si = 0;
     for (size_t i = 0; i < f.passes.size(); ++i) {

@@ -87,7 +87,12 @@ struct ForwardPlan {
     // SPEC A.9 census (docs/firmware.md, section 10): radius (0 = off), and
     // the census codes of R' and L' at the line buffers' addresses + co.
     int census = 0, kc = 0, co = 0;
-    int map = 0;  // output line (N bytes) during the backtrack and after
+    // SPEC A.9 horizontal aggregation (agg-rx > 0): the node reads extended,
+    // clamped copies of the line buffers, Rx[m] at rbr - m, Lx[m] at rbl + m
+    // (m from 1 - agg to kr + agg / kl + agg), codes at + cxo.
+    int agg = 0, rbr = 0, rbl = 0, cxo = 0;
+    int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
+    int map = 0;      // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
     int64_t ext_needed = 0;
     // 2 to 5 PEs with the vote across batches: one line per batch, pointer
