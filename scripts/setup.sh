@@ -45,14 +45,12 @@ case "$mode" in
     echo "== Release test suite"
     ctest --test-dir build --output-on-failure -j "$jobs"
     fuzz_figures build
-    # The constrained-random RTL programs (rtl.random, rtl.mutant_*) run in the
-    # Release suite only: under ASan they exceeded the 300 s timeout.
-    echo "== Sanitizer (ASan+UBSan) test suite (all but rtl.random and rtl.mutant_*; docs/testing.md)"
+    echo "== Sanitizer (ASan+UBSan) test suite (docs/testing.md)"
     # The sanitizer build links the Release build's verilated RTL models
     # (compiled without sanitizers in both) instead of verilating them again.
     configure_build build-asan Asan -DIMAP_RTL_PREBUILT="$PWD/build"
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-      ctest --test-dir build-asan --output-on-failure -j "$jobs" -E '^rtl\.(random|mutant_)'
+      ctest --test-dir build-asan --output-on-failure -j "$jobs"
     fuzz_figures build-asan
     ;;
 esac

@@ -1,5 +1,7 @@
 #include "bench.hpp"
 
+#include "imap/tlm/sanitizer.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -306,6 +308,7 @@ bool Bench::process_pending() {
 // period. After a rising edge has been evaluated it processes the trace
 // port; a checker may hold the clock there until the reference catches up.
 void Bench::clock() {
+    imap::tlm::declare_main_stack_to_sanitizer();  // the reference's faults are thrown here
     if (!active_) {
         next_trigger(clock_ev_);
         return;

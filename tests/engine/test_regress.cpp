@@ -201,7 +201,8 @@ BOOST_AUTO_TEST_CASE(junit_counts_and_skips) {
     }
     rg::Result r;
     r.runs = {ran("core", 288878), std::nullopt, ran("core", 2)};
-    r.runs[0]->modeled_ms = 288878 / (40.0 * 1e6) * 1e3;  // as the models compute it: 7.2219500000000005
+    r.runs[0]->modeled_ms =
+        288878 / (40.0 * 1e6) * 1e3;  // as the models compute it: 7.2219500000000005
     r.runs[2]->outcome = eng::Outcome::Mismatch;
     r.runs[2]->bit_exact = false;
     r.runs[2]->differing_pixels = 1;

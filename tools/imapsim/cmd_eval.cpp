@@ -195,8 +195,9 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
         plot::Figure f;
         f.title =
             "Mean " + std::string(delta_txt) + " (nonocc) against modeled time, headline case";
-        f.subtitle = "ms = firmware (paper + ad-max + joint, measured) + other A.9 options (estimate); " +
-                     std::to_string(scenes.size()) + " scene(s)";
+        f.subtitle =
+            "ms = firmware (paper + ad-max + joint, measured) + other A.9 options (estimate); " +
+            std::to_string(scenes.size()) + " scene(s)";
         f.xlabel = "modeled ms per frame (128x128, D=64, 256 PEs, 40 MHz; partly estimated)";
         f.ylabel = "mean " + std::string(delta_txt) + " % (nonocc)";
         std::vector<std::pair<double, double>> pts;

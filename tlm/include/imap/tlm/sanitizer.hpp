@@ -9,8 +9,12 @@
 // cleanup ("ASan is ignoring requested __asan_handle_no_return", google/
 // sanitizers issue 189) and the next check in the unwound frames reports a
 // false stack-buffer-overflow. Every runner calls this right after
-// sc_start() returns: it re-declares the main thread's stack to ASan.
-// Without ASan it does nothing.
+// sc_start() returns: it re-declares the main thread's stack to ASan. A
+// method process that may throw inside the simulation (it runs on the main
+// stack, after threads have yielded or ended) calls it on entry: the
+// RTL bench's clock, whose reference model raises the machine's faults.
+// Without ASan it does nothing; with ASan it costs two calls once the
+// stack is known.
 #pragma once
 
 namespace imap::tlm {
