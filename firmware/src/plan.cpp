@@ -341,6 +341,10 @@ golden::Params firmware_part(const golden::Params& p) {
     golden::Params q = golden::paper_part(p);
     q.ad_max = p.ad_max;  // run in the firmware (WM_ADD, DP_MEET)
     q.mode = p.mode;
+    if (p.kc > 0) q.km = p.km;  // the census keeps the cost valid without |a - b|
+    q.kc = p.kc;                // the census (census.inc)
+    q.census = p.census;
+    if (p.agg_ry == 0) q.agg_rx = p.agg_rx;  // a horizontal window (the window phase)
     return q;
 }
 

@@ -76,7 +76,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += 2 * c.pixels;
         c.items.push_back(fmt("dissim bt", 12, 12, 2 * c.pixels));
     }
-    if (p.kc > 0) {
+    if (p.kc > 0 && !in_firmware) {  // the firmware runs the census (docs/firmware.md, section 10)
         // ld code, xor, andi + shri (nibbles), 2 ldx of a 16-entry table (2
         // cycles each), add, kc by shift-and-add, add into the pixel cost.
         const double node = 1 + 1 + 2 + 4 + 1 + mul_ops(p.kc, 1) + cb;
@@ -88,7 +88,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += c.pixels + 16;
         c.items.push_back(fmt("census", node, pixel, c.pixels + 16));
     }
-    if (rx > 0) {
+    if (rx > 0 && !(in_firmware && ry == 0)) {  // the firmware runs a horizontal window
         // the pixel costs of the 2 rx previous columns live in a rolling
         // buffer: load them, add them to the new one, store the new one over
         // the oldest (read just before).
@@ -147,9 +147,16 @@ const std::vector<Variant>& tradeoff_variants() {
         p.Wo = p.Wd = 144;
         add("quality-3x3", "quality with a 3x3 window, Wo = Wd = 144", p);
         p = quality;
+        p.agg_rx = 1;
+        add("quality-3x1", "quality with a 3x1 window", p);
+        p = quality;
         p.ad_max = 255;
         add("quality-notrunc", "quality, ad-max 255", p);
         add("quality", "the quality preset", quality);
+        p = quality;
+        p.agg_ry = 2;
+        p.Wo = p.Wd = 400;
+        add("quality-5x5", "quality with a 5x5 window, Wo = Wd = 400", p);
         p = quality;
         p.dissim = Dissim::Bt;
         add("quality-bt", "quality, dissim bt", p);

@@ -132,7 +132,9 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
         isa::MachineConfig cfg;  // the forward-pass planner refuses them too
         BOOST_CHECK_THROW(fw::plan_forward(p, roi.w, cfg), fw::FirmwareError);
     }
-    const std::string q = refusal(g::preset("quality"), g::Roi{0, 0, 128, 128});
+    g::Params q5 = g::preset("quality");
+    q5.agg_ry = 2;  // the 5x5 window (trade-off variant quality-5x5)
+    const std::string q = refusal(q5, g::Roi{0, 0, 128, 128});
     BOOST_TEST(q.find("option(s) --agg-ry 2 (") != std::string::npos);
     // the forward-pass test layout (host-filled line buffers) has no codes
     g::Params c;
@@ -281,12 +283,20 @@ BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
         BOOST_TEST_CONTEXT(v.name) {
             BOOST_TEST(f.ad_max == p.ad_max);
             BOOST_TEST((f.mode == p.mode));
-            BOOST_TEST(refusal(f, roi).empty());
+            BOOST_TEST((f.kc == p.kc && f.census == p.census));
+            BOOST_TEST(f.agg_ry == 0);
+            BOOST_TEST(f.agg_rx == (p.agg_ry == 0 ? p.agg_rx : 0));
+            // never refused for an option; a variant may not fit the memory
+            // (quality-single: the window copies need 1,072 bytes per PE)
+            const std::string why = refusal(f, roi);
+            BOOST_TEST((why.empty() || why.find("does not fit") != std::string::npos), why);
         }
     }
+    // the quality preset is its own firmware part
     g::Params q = g::preset("quality");
     q.D = 64;
-    BOOST_TEST(!refusal(q, roi).empty());
+    BOOST_TEST(refusal(q, roi).empty());
+    BOOST_TEST(fw::firmware_part(q).agg_rx == q.agg_rx);
 }
 
 BOOST_AUTO_TEST_CASE(joint_votes_seeds_frames_batches) {
