@@ -15,6 +15,7 @@
 .include "dp_forward.inc"
 .include "dp_back.inc"
 .include "relayout.inc"
+.include "census.inc"
 
 .equ BATCH_IDX 255                  ; param word holding the current batch
 
@@ -46,6 +47,7 @@ tloop:
         DP_SETUP
         PLAN_IN
         DP_EXCHANGE
+        AGG_EXTEND
         DP_INIT
         cld     c0, [#TS0]
         cst     c0, [#TSLOT_CUR]
@@ -103,6 +105,7 @@ batch:
         DP_SETUP
         PLAN_IN
         DP_EXCHANGE
+        AGG_EXTEND
         DP_INIT
         DP_FORWARD
         DP_MEET

@@ -20,7 +20,8 @@ int ceil_div(int a, int b) {
 }
 
 int wm_max(const golden::Params& p) {
-    return p.km * std::min(255, p.ad_max) + p.kb * p.gb;
+    return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
+           (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -153,6 +154,17 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         fm.avail[p].assign(mem, kNever);
         fm.used[p].assign(mem, 0);
         for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
+        if (f.agg > 0) {
+            // the window copies: Rx[m], Lx[m] (and codes) die after column m + agg
+            for (int c = 0; c < (f.kc > 0 ? 2 : 1); ++c) {
+                const int off = c * f.cxo;
+                for (int m = 1 - f.agg; m <= f.kr + f.agg; ++m)
+                    fm.avail[p][f.rbr - m + off] = std::max(1, m + f.agg + 1);
+                for (int m = 1 - f.agg; m <= f.kl + f.agg; ++m)
+                    fm.avail[p][f.rbl + m + off] = std::max(1, m + f.agg + 1);
+            }
+            continue;
+        }
         for (int i = 0; i <= f.kr; ++i)
             fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
         for (int i = 0; i <= f.kl; ++i)
@@ -267,20 +279,26 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     return true;
 }
 
-void check_options(const golden::Params& p) {
+void check_options(const golden::Params& p, bool census_ok) {
     // SPEC A.9 options the firmware does not run (docs/firmware.md, section 10):
     // refused up front, never a wrong map.
     const golden::Params off;
     std::string missing;
     auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
     if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
-    if (p.kc != off.kc) add("--kc " + std::to_string(p.kc));
-    if (p.agg_rx != off.agg_rx) add("--agg-rx " + std::to_string(p.agg_rx));
+    if (p.kc != off.kc && !census_ok) add("--kc " + std::to_string(p.kc));
+    if (p.agg_rx != off.agg_rx && (!census_ok || p.agg_rx > 2))
+        add("--agg-rx " + std::to_string(p.agg_rx));
     if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
-                            " (it runs SPEC A.1-A.7 with --ad-max and --mode joint; needs "
-                            "--dissim ad, --kc 0, --agg-rx 0, --agg-ry 0; the golden runs all)");
+                            (census_ok
+                                 ? " (it runs SPEC A.1-A.7 with --ad-max, --kc/--census, --agg-rx "
+                                   "0..2 and --mode joint; needs --dissim ad, --agg-rx <= 2, "
+                                   "--agg-ry 0; the golden runs all)"
+                                 : " (the forward-pass test layout runs SPEC A.1-A.7 with "
+                                   "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
+                                   "--agg-rx 0, --agg-ry 0)"));
 }
 
 void check_range(const golden::Params& p) {
@@ -288,9 +306,10 @@ void check_range(const golden::Params& p) {
     const int64_t od = int64_t{p.Wo} + p.Wd;
     if (std::max(w, od) > kMaxSpread) {
         std::ostringstream os;
-        os << "firmware: cost spread max(km*min(255, ad-max) + kb*gb, Wo + Wd) = "
+        os << "firmware: cost spread max((2*agg-rx+1)*(2*agg-ry+1)*(km*min(255, ad-max) + "
+              "kb*gb + 8*kc), Wo + Wd) = "
            << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
-           << "; lower --km, --kb, --gb, --Wo or --Wd)";
+           << "; lower --km, --kb, --gb, --kc, --agg-rx, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
 }
@@ -314,7 +333,7 @@ uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t
 
 namespace {
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny);
+                              bool tiny, bool census_ok);
 }
 
 golden::Params firmware_part(const golden::Params& p) {
@@ -325,7 +344,7 @@ golden::Params firmware_part(const golden::Params& p) {
 }
 
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg) {
-    return plan_forward_impl(p, N, cfg, false);
+    return plan_forward_impl(p, N, cfg, false, false);
 }
 
 namespace {
@@ -365,9 +384,9 @@ bool place_tiny(ForwardPlan& f, int mem) {
 }
 
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny) {
+                              bool tiny, bool census_ok) {
     golden::validate_for_width(p, N);
-    check_options(p);
+    check_options(p, census_ok);
     check_range(p);
     ForwardPlan f;
     f.N = N;
@@ -410,6 +429,47 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     f.costl = f.rb + 2 + f.kl;
     f.costh = f.costl + p.D + 1;
     f.preg = f.costh + p.D + 1;
+    if (p.kc > 0) {
+        // census codes beside the line buffers, at their addresses + co
+        // (never reused for pointers: the region lies below the pointer region)
+        f.census = p.census;
+        f.kc = p.kc;
+        f.co = f.preg - (f.kblk + kKBlockSize);
+        f.preg += f.kr + f.kl + 2;
+    }
+    f.rbr = f.rb;
+    f.rbl = f.rb + 1;
+    const int mem0 = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
+    if (p.agg_rx > 0) {
+        // The node reads extended, clamped copies of the line buffers (and
+        // codes): Rx[m], m = 1-a .. kr+a, at rbr - m, Lx[m], m = 1-a .. kl+a, at
+        // rbl + m, right after the constant block; then the costs. The
+        // re-layout's buffers (and codes) move to the top of the memory: they
+        // die when the copies are made (AGG_EXTEND, before the forward pass).
+        const int a = p.agg_rx;
+        f.agg = a;
+        const int lo = f.kblk + kKBlockSize;
+        f.rbr = lo + f.kr + a;
+        f.rbl = f.rbr + 2 * a;
+        const int se = f.rbl + f.kl + a + 1 - lo;
+        f.cxo = p.kc > 0 ? se : 0;
+        f.costl = lo + se * (p.kc > 0 ? 2 : 1);
+        f.costh = f.costl + p.D + 1;
+        f.preg = f.costh + p.D + 1;
+        const int s0 = f.kr + f.kl + 2;
+        f.agg_src = mem0 - s0 * (p.kc > 0 ? 2 : 1);
+        f.rb = f.agg_src + f.kr;
+        f.co = p.kc > 0 ? s0 : 0;
+        if (f.agg_src < f.costl) {
+            std::ostringstream os;
+            os << "does not fit: --agg-rx " << a << " needs at least "
+               << f.costl + s0 * (p.kc > 0 ? 2 : 1)
+               << " bytes of local memory per PE for the line buffers and their window copies "
+                  "(have "
+               << mem0 << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+    }
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     if (f.preg > mem) {
         std::ostringstream os;
@@ -487,6 +547,10 @@ int seg_width(const FramePlan& fp, int g) {
 void plan_skew(FramePlan& fp, int span) {
     Relayout& rl = fp.rl;
     if (fp.nseg != 1) return;
+    // The census codes are computed in the video layout, where every line's
+    // ROI edge sits on the same lanes (census.inc); skewed rows would move
+    // them by a line's span per line. Census frames keep the direct rows.
+    if (fp.f.kc > 0) return;
     const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
     int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
     for (int kind = 0; kind < span; ++kind) {
@@ -631,7 +695,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
                      const isa::MachineConfig& cfg) {
-    check_options(p);
+    check_options(p, true);
     if (!cfg.indirect)
         throw FirmwareError(
             "the DP firmware needs per-PE (indirect) addressing for its re-layout and "
@@ -645,7 +709,13 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     // Too few lines per batch for the vote across batches: one line at a
     // time, every pointer table kept in the external memory.
     const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
-    fp.f = plan_forward_impl(p, roi.w, cfg, tiny);  // range and DP memory checks
+    if (p.kc > 0 && tiny)
+        throw FirmwareError(
+            "firmware: --kc " + std::to_string(p.kc) +
+            " (census) needs the ROI's lines in one batch: " + std::to_string(roi.h) +
+            " lines on " + std::to_string(fp.P) + " PEs run one line per batch (needs at least " +
+            std::to_string(2 * roi.h) + " PEs, or --kc 0)");
+    fp.f = plan_forward_impl(p, roi.w, cfg, tiny, true);  // range and DP memory checks
     if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {
         std::ostringstream os;
@@ -683,6 +753,19 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
+    if (p.kc > 0 && fp.batches.size() > 1) {
+        std::ostringstream os;
+        os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << H
+           << " lines in one batch (the codes read the lines y-" << p.census << "..y+" << p.census
+           << " of the ROI): needs " << span * H << " PEs, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
+    if (p.kc > 0 && fp.nseg > 1) {
+        std::ostringstream os;
+        os << "firmware: --kc " << p.kc << " (census) needs the ROI's width in one video segment: "
+           << "needs " << roi.w << " PEs, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
 
     // Re-layout geometry: the lines fill the ring (and a segment holds at
     // most half of it): the routes take the shorter way round; else the
@@ -734,7 +817,9 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     const ForwardPlan& f = fp.f;
     const int mem = static_cast<int>(cfg.mem_bytes);
     int end = f.mem_needed;
-    fp.inl = f.costl;  // the cost planes and the pointer region are free during the input
+    // the cost planes and the pointer region are free during the input (with
+    // the window: the copies' region too, up to the re-layout's buffers)
+    fp.inl = f.agg > 0 ? f.kblk + kKBlockSize : f.costl;
     if (fp.inl + 2 * fp.hbmax <= mem) {
         fp.inr = fp.inl + fp.hbmax;
         end = std::max(end, fp.inl + 2 * fp.hbmax);
@@ -747,6 +832,32 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
         os << "does not fit: needs " << fp.inl + fp.hbmax
            << " bytes of local memory per PE for the video rows (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
+    }
+    if (f.census > 0) {
+        // census code rows (video layout): beside the pixel rows, clear of the
+        // code buffers the code re-layout writes (they end at preg)
+        const int rows = fp.split_in ? 1 : 2;
+        fp.cinl = f.agg > 0 ? fp.inl + rows * fp.hbmax : std::max(f.preg, fp.inl + rows * fp.hbmax);
+        fp.cinr = fp.split_in ? fp.cinl : fp.cinl + fp.hbmax;
+        if (fp.cinl + rows * fp.hbmax > mem) {
+            std::ostringstream os;
+            os << "does not fit: needs " << fp.cinl + rows * fp.hbmax
+               << " bytes of local memory per PE for the census code rows (have " << mem
+               << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+        end = std::max(end, fp.cinl + rows * fp.hbmax);
+    }
+    if (f.agg > 0) {
+        const int rows_end = f.census > 0 ? fp.cinr + fp.hbmax : fp.inr + fp.hbmax;
+        if (rows_end > f.agg_src) {
+            std::ostringstream os;
+            os << "does not fit: --agg-rx " << f.agg << " needs " << rows_end - f.agg_src + mem
+               << " bytes of local memory per PE for the video rows beside the line buffers (have "
+               << mem << ", mem_bytes)";
+            throw FirmwareError(os.str());
+        }
+        end = std::max(end, mem);
     }
     // output rows: after the constant block, avoiding the map
     fp.out = kKBlockSize;
@@ -850,11 +961,73 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
         band = std::min(f.N, last + 1);
     }
     equ(os, "BANDE", band);
-    equ(os, "EXCHN",
-        f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
+    equ(os, "KC", f.kc);
+    equ(os, "CENSUS", f.census);
+    equ(os, "CO", f.co);
+    equ(os, "AGG", f.agg);
+    equ(os, "RBR", f.rbr);
+    equ(os, "RBL", f.rbl);
+    equ(os, "CNO", f.agg > 0 ? f.cxo : f.co);
+    equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
+}
+
+// Site of R'[m] / L'[m] of a kind (docs/firmware.md, sections 1 and 10).
+int site_r(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N - m;
+    return kind == 0 ? f.s - m : f.s + m;
+}
+int site_l(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N + f.D - 1 - m;
+    return kind == 0 ? f.s + f.D - 1 - m : f.s + m;
+}
+// Where the input re-layout stored pixel X of R / L (the holder kind: X <= s
+// on kind 0, X > s on kind 1; relayout.inc, RIN_RECV_INIT).
+int holder(const ForwardPlan& f, int X) {
+    return f.bidir && X > f.s ? 1 : 0;
+}
+int addr_r(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb - 1 - X;
+    if (f.joint) return h == 0 ? f.rb - 1 - X : f.rb - f.N + X;
+    return h == 0 ? f.rb - f.s + X : f.rb + f.s - X;
+}
+int addr_l(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb + 2 + X;
+    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
+    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+}
+
+// The extended, clamped line buffers of the aggregation window
+// (AGG_EXTEND in census.inc): one AGX line per destination byte, with the
+// source address of each kind and whether it is the kind's own byte (else
+// the partner's, one ring hop away).
+void agg_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_AGG\n";
+    if (f.agg > 0) {
+        auto clampx = [&](int X) { return std::max(0, std::min(f.N - 1, X)); };
+        for (int img = 0; img < 2; ++img) {
+            const int top = img == 0 ? f.kr : f.kl;
+            for (int m = 1 - f.agg; m <= top + f.agg; ++m) {
+                const int dest = img == 0 ? f.rbr - m : f.rbl + m;
+                os << "        AGX " << dest;
+                for (int kind = 0; kind < 2; ++kind) {
+                    const int kk = f.kinds == 2 ? kind : 0;
+                    const int X = clampx(img == 0 ? site_r(f, kk, m) : site_l(f, kk, m));
+                    const int src = img == 0 ? addr_r(f, X) : addr_l(f, X);
+                    os << ", " << src << ", " << (holder(f, X) == kk ? 1 : 0);
+                }
+                os << "\n";
+            }
+        }
+    }
+    os << ".endm\n";
 }
 
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
+    agg_macros(os, f);
     os << ".macro PLAN_FORWARD\n";
     size_t si = 0;
     for (size_t i = 0; i < f.passes.size(); ++i) {
@@ -914,6 +1087,8 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "INR", fp.inr);
     equ(os, "OUT", fp.out);
     equ(os, "SPLIT_IN", fp.split_in ? 1 : 0);
+    equ(os, "CINL", fp.cinl);
+    equ(os, "CINR", fp.cinr);
     equ(os, "RMOD", fp.rl.modular ? 1 : 0);
     equ(os, "BP", fp.rl.base);
     equ(os, "UR", fp.rl.ur);
@@ -932,8 +1107,8 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         int a0, n0, a1 = 0, n1 = 0;
         in_lanes(fp.f, fp.P, g, W, 0, &a0, &n0);
         if (fp.f.bidir) in_lanes(fp.f, fp.P, g, W, 1, &a1, &n1);
-        os << "        RELAYOUT_IN " << g << ", " << W << ", " << a0 << ", " << n0 << ", " << a1
-           << ", " << n1 << "\n";
+        os << (fp.f.census > 0 ? "        RELAYOUT_IN_CENSUS " : "        RELAYOUT_IN ") << g
+           << ", " << W << ", " << a0 << ", " << n0 << ", " << a1 << ", " << n1 << "\n";
     }
     os << ".endm\n";
     os << ".macro PLAN_OUT\n";

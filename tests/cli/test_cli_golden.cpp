@@ -198,7 +198,8 @@ BOOST_FIXTURE_TEST_CASE(the_firmware_refuses_a9_options, Fixture) {
         run("run --model core --size 64x16 --D 8 --preset quality --report " + p("r.json"));
     BOOST_TEST_INFO(r.out);
     BOOST_TEST(r.code == 2);
-    BOOST_TEST(r.out.find("does not implement the SPEC A.9 option(s) --kc 4") != std::string::npos);
+    BOOST_TEST(r.out.find("does not implement the SPEC A.9 option(s) --agg-ry 2") !=
+               std::string::npos);
     BOOST_TEST(!fs::exists(p("r.json")));
 }
 

@@ -118,8 +118,7 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
     };
     const Case cases[] = {
         {"bt", [](g::Params& p) { p.dissim = g::Dissim::Bt; }, "--dissim bt"},
-        {"kc", [](g::Params& p) { p.kc = 4; }, "--kc 4"},
-        {"agg-rx", [](g::Params& p) { p.agg_rx = 2; }, "--agg-rx 2"},
+        {"agg-rx", [](g::Params& p) { p.agg_rx = 3; }, "--agg-rx 3"},
         {"agg-ry", [](g::Params& p) { p.agg_ry = 1; }, "--agg-ry 1"},
     };
     for (const Case& c : cases) {
@@ -134,7 +133,141 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
         BOOST_CHECK_THROW(fw::plan_forward(p, roi.w, cfg), fw::FirmwareError);
     }
     const std::string q = refusal(g::preset("quality"), g::Roi{0, 0, 128, 128});
-    BOOST_TEST(q.find("option(s) --kc 4, --agg-rx 2, --agg-ry 2 (") != std::string::npos);
+    BOOST_TEST(q.find("option(s) --agg-ry 2 (") != std::string::npos);
+    // the forward-pass test layout (host-filled line buffers) has no codes
+    g::Params c;
+    c.kc = 4;
+    BOOST_TEST(refusal(c, roi).empty());
+    isa::MachineConfig cfg;
+    try {
+        fw::plan_forward(c, roi.w, cfg);
+        BOOST_ERROR("plan_forward accepted --kc 4");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()).find("--kc 4 (the forward-pass test layout") !=
+                   std::string::npos);
+    }
+}
+
+namespace {
+// A random census set: the option params plus kc and the radius.
+g::Params random_census_params(std::mt19937& rng, int N) {
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    g::Params p = random_option_params(rng, N);
+    const int pick = uni(0, 3);
+    p.kc = pick == 0 ? 1 : pick == 1 ? 4 : pick == 2 ? uni(2, 40) : uni(41, 1000);
+    p.census = uni(1, 2);
+    if (uni(0, 5) == 0) p.km = p.kb = 0;  // a census-only cost
+    return p;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(census_random_frames) {
+    // The census term on every mode, with ad-max and the quality weights:
+    // ROI inside a larger random image (the codes clamp into the ROI, not
+    // the image), one batch and one segment, random PE counts.
+    std::mt19937 rng(4242);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int it = 0; it < 40; ++it) {
+        const int W = uni(4, 44), Hi = uni(1, 12);
+        g::Roi roi;
+        roi.w = uni(2, W);
+        roi.h = uni(1, Hi);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, Hi - roi.h);
+        g::Params p = random_census_params(rng, roi.w);
+        if (p.mode != g::Mode::Single && p.kc * 8 > 20000) p.kc = 100;
+        const int span = p.mode == g::Mode::Single ? 1 : 2;
+        const int P = uni(std::max({2, roi.w, span * roi.h}), 48);
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                           << " kc=" << p.kc << " census=" << p.census << " km=" << p.km
+                           << " ad-max=" << p.ad_max << " vote=" << p.vote
+                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+            check_frame(p, fr, roi, P);
+        }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(census_grid_radius_kc_modes_ad_max) {
+    std::mt19937 rng(808);
+    const Frame fr = random_frame(rng, 72, 24, 24);
+    const g::Roi roi{5, 3, 60, 18};
+    for (int mode = 0; mode < 3; ++mode)
+        for (int r : {1, 2})
+            for (int kc : {1, 4, 9})
+                for (int ad : {16, 255}) {
+                    g::Params p;
+                    p.D = 20;
+                    p.mode = mode == 0   ? g::Mode::Single
+                             : mode == 1 ? g::Mode::Bidir
+                                         : g::Mode::Joint;
+                    p.km = 1;
+                    p.kb = 0;
+                    p.gb = 0;
+                    p.Wo = p.Wd = 80;
+                    p.ad_max = ad;
+                    p.kc = kc;
+                    p.census = r;
+                    BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                                       << " kc=" << kc << " census=" << r << " ad-max=" << ad) {
+                        check_frame(p, fr, roi, 64);
+                    }
+                }
+}
+
+BOOST_AUTO_TEST_CASE(census_headline_and_range) {
+    std::mt19937 rng(99);
+    const Frame fr = random_frame(rng, 160, 140, 40);
+    g::Params q = g::preset("quality");  // joint, km 1, ad-max 16, kc 4, census 2
+    q.agg_rx = q.agg_ry = 0;
+    q.D = 64;
+    q.Wo = q.Wd = 80;
+    uint64_t cycles = 0;
+    check_frame(q, fr, g::Roi{16, 6, 128, 128}, 256, &cycles);
+    BOOST_TEST_MESSAGE("census joint headline cycles: " << cycles);
+    // 8*kc enters the 16-bit range check
+    g::Params p;
+    p.km = 0;
+    p.kb = 0;
+    p.kc = 4096;  // 32,768 > 32,766
+    const g::Roi roi{0, 0, 64, 4};
+    BOOST_TEST(refusal(p, roi).find("kb*gb + 8*kc), Wo + Wd) = 32768") != std::string::npos);
+    p.kc = 4095;  // 32,760
+    BOOST_TEST(refusal(p, roi).empty());
+}
+
+BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
+    isa::MachineConfig cfg;
+    g::Params p;
+    p.kc = 4;
+    p.D = 8;
+    cfg.pes = 16;  // bidir: 8 lines per batch, the ROI has 12
+    try {
+        fw::plan_frame(p, g::Roi{0, 0, 16, 12}, cfg);
+        BOOST_ERROR("census over two batches was accepted");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()) ==
+                   "firmware: --kc 4 (census) needs the ROI's 12 lines in one batch (the codes "
+                   "read the lines y-2..y+2 of the ROI): needs 24 PEs, have 16");
+    }
+    cfg.pes = 32;  // a 40-wide ROI needs two video segments
+    try {
+        fw::plan_frame(p, g::Roi{0, 0, 40, 4}, cfg);
+        BOOST_ERROR("census over two segments was accepted");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()) ==
+                   "firmware: --kc 4 (census) needs the ROI's width in one video segment: needs "
+                   "40 PEs, have 32");
+    }
+    cfg.pes = 2;  // the one-line-per-batch mode
+    p.mode = g::Mode::Single;
+    try {
+        fw::plan_frame(p, g::Roi{0, 0, 8, 8}, cfg);
+        BOOST_ERROR("census in the one-line-per-batch mode was accepted");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()).find("--kc 4 (census) needs the ROI's lines in one "
+                                              "batch: 8 lines on 2 PEs") != std::string::npos);
+    }
 }
 
 BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
@@ -242,4 +375,76 @@ BOOST_AUTO_TEST_CASE(joint_one_line_per_batch_is_refused) {
     p.vote = false;  // without the vote, 2 lines per batch are fine
     std::mt19937 rng(3);
     check_frame(p, random_frame(rng, 32, 8, 8), g::Roi{0, 0, 32, 8}, 4);
+}
+
+BOOST_AUTO_TEST_CASE(window_random_frames) {
+    // SPEC A.9 horizontal aggregation (agg-rx 1..2, agg-ry 0) with and
+    // without the census, every mode; without the census also over batches,
+    // video segments and the one-line-per-batch mode.
+    std::mt19937 rng(5150);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int it = 0; it < 40; ++it) {
+        const int W = uni(4, 44), Hi = uni(1, 12);
+        g::Roi roi;
+        roi.w = uni(2, W);
+        roi.h = uni(1, Hi);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, Hi - roi.h);
+        const bool census = uni(0, 1) == 0;
+        g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
+        p.agg_rx = uni(1, 2);
+        if (p.kc * 8 > 2000) p.kc = 100;
+        while (g::Params(p).km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc > 6500) p.km /= 2;
+        if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+        const int span = p.mode == g::Mode::Single ? 1 : 2;
+        const int P = census ? uni(std::max({2, roi.w, span * roi.h}), 48)
+                             : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                           << " agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census
+                           << " km=" << p.km << " ad-max=" << p.ad_max << " vote=" << p.vote
+                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+            check_frame(p, fr, roi, P);
+        }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(window_grid_and_headline) {
+    std::mt19937 rng(616);
+    const Frame fr = random_frame(rng, 72, 24, 24);
+    const g::Roi roi{5, 3, 60, 18};
+    for (int mode = 0; mode < 3; ++mode)
+        for (int rx : {1, 2})
+            for (int kc : {0, 4}) {
+                g::Params p;
+                p.D = 20;
+                p.mode = mode == 0 ? g::Mode::Single : mode == 1 ? g::Mode::Bidir : g::Mode::Joint;
+                p.km = 1;
+                p.kb = 0;
+                p.gb = 0;
+                p.Wo = p.Wd = 80;
+                p.ad_max = 16;
+                p.kc = kc;
+                p.agg_rx = rx;
+                BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h) << " agg-rx=" << rx << " kc=" << kc) {
+                    check_frame(p, fr, roi, 64);
+                }
+            }
+    // the headline with census + a 5x1 window (quality weights, Wo = Wd = 80)
+    const Frame big = random_frame(rng, 160, 140, 40);
+    g::Params q = g::preset("quality");
+    q.agg_ry = 0;
+    q.D = 64;
+    q.Wo = q.Wd = 80;
+    uint64_t cycles = 0;
+    check_frame(q, big, g::Roi{16, 6, 128, 128}, 256, &cycles);
+    BOOST_TEST_MESSAGE("census + 5x1 joint headline cycles: " << cycles);
+    // the window multiplies Wm_max in the 16-bit range check
+    g::Params r;
+    r.km = 30;
+    r.kb = 0;
+    r.agg_rx = 2;  // 5 * 30 * 255 = 38,250 > 32,766
+    BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).find("= 38250 exceeds") != std::string::npos);
+    r.agg_rx = 1;  // 22,950
+    BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).empty());
 }

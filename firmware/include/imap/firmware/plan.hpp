@@ -48,10 +48,10 @@ struct ForwardPass {
 
 // Where the pointer bytes of column k of a kind are during the backtrack.
 struct PointerColumn {
-    int addr = -1;        // local address
-    int base = 0;         // level of the first slot (pointer of level j: slot j - base)
-    int bytes = 0;        // bytes holding this kind's pointers
-    int ext = -1;         // external address if the column was spilled, else -1
+    int addr = -1;  // local address
+    int base = 0;   // level of the first slot (pointer of level j: slot j - base)
+    int bytes = 0;  // bytes holding this kind's pointers
+    int ext = -1;   // external address if the column was spilled, else -1
 };
 
 // A block transfer: spill after pass `after` (xst) or reload after the
@@ -65,26 +65,34 @@ struct ForwardPlan {
     int N = 0, D = 0;
     bool bidir = false;  // two PEs per line (bidir or joint)
     bool joint = false;  // SPEC A.9 joint: kind 0 = sites 0..s forward, kind 1 = s..N-1 mirrored
-    int s = 0;       // seed column (bidir)
-    int ds = -1;     // seed disparity, -1 = free
-    int kinds = 1;   // 1 (single) or 2 (bidir: 0 = left wavefront, 1 = right)
-    int K[2] = {0, 0};                    // last column of each kind
-    int kmax = 0;                         // max(K)
-    std::vector<int> lo[2], hi[2];        // level range of each kind at columns 0..K
-    std::vector<ForwardPass> passes;      // in execution order
-    std::vector<PointerColumn> ptr[2];    // per kind, columns 0..kmax (0 unused)
+    int s = 0;           // seed column (bidir)
+    int ds = -1;         // seed disparity, -1 = free
+    int kinds = 1;       // 1 (single) or 2 (bidir: 0 = left wavefront, 1 = right)
+    int K[2] = {0, 0};   // last column of each kind
+    int kmax = 0;        // max(K)
+    std::vector<int> lo[2], hi[2];      // level range of each kind at columns 0..K
+    std::vector<ForwardPass> passes;    // in execution order
+    std::vector<PointerColumn> ptr[2];  // per kind, columns 0..kmax (0 unused)
     std::vector<Transfer> spills, reloads;
-    int64_t valid_states = 0;             // valid states of one line (both kinds)
-    int64_t slots = 0;                    // slots the passes compute (per PE)
+    int64_t valid_states = 0;  // valid states of one line (both kinds)
+    int64_t slots = 0;         // slots the passes compute (per PE)
     // Constants of the node (docs/firmware.md, section 2).
-    int xo = 0, xm = 0, xd = 0;           // forcing offsets
-    int kpp = 0;                          // kb*gb - Wd - Wo (16-bit two's complement)
+    int xo = 0, xm = 0, xd = 0;  // forcing offsets
+    int kpp = 0;                 // kb*gb - Wd - Wo (16-bit two's complement)
     // Memory (local addresses per PE).
-    int kblk = 0;                         // per-PE constant block
-    int rb = 0, kr = 0, kl = 0;           // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i (i <= kl)
-    int costl = 0, costh = 0;             // cost planes (levels 0..D, D = pad)
-    int preg = 0;                         // start of the pointer region
-    int map = 0;                          // output line (N bytes) during the backtrack and after
+    int kblk = 0;                // per-PE constant block
+    int rb = 0, kr = 0, kl = 0;  // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i (i <= kl)
+    int costl = 0, costh = 0;    // cost planes (levels 0..D, D = pad)
+    int preg = 0;                // start of the pointer region
+    // SPEC A.9 census (docs/firmware.md, section 10): radius (0 = off), and
+    // the census codes of R' and L' at the line buffers' addresses + co.
+    int census = 0, kc = 0, co = 0;
+    // SPEC A.9 horizontal aggregation (agg-rx > 0): the node reads extended,
+    // clamped copies of the line buffers, Rx[m] at rbr - m, Lx[m] at rbl + m
+    // (m from 1 - agg to kr + agg / kl + agg), codes at + cxo.
+    int agg = 0, rbr = 0, rbl = 0, cxo = 0;
+    int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
+    int map = 0;      // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
     int64_t ext_needed = 0;
     // 2 to 5 PEs with the vote across batches: one line per batch, pointer
@@ -153,6 +161,7 @@ struct FramePlan {
     int nseg = 0;                   // segments of P pixels per ROI line
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
+    int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
     Relayout rl;
     std::vector<Batch> batches;
     int mem_needed = 0;      // local bytes per PE
