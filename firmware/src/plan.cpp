@@ -12,7 +12,8 @@ namespace imap::firmware {
 namespace {
 
 // per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
-constexpr int kKBlockSize = 10;
+constexpr int kKBlockSize = 10;   // 8 constants + 2 bytes of the re-layout
+constexpr int kPopTableBytes = 16;  // the census's popcount of a nibble (census.inc)
 constexpr int kNever = INT_MAX;
 
 int ceil_div(int a, int b) {
@@ -231,7 +232,7 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
     // into memory free of the map and of the on-chip columns still ahead
     // (xld writes every PE, so free for every kind).
     for (int p = 0; p < 2; ++p)
-        for (int a = 0; a < mem; ++a) fm.avail[p][a] = a < f.kblk + kKBlockSize ? kNever : 0;
+        for (int a = 0; a < mem; ++a) fm.avail[p][a] = a < f.kblk + f.kbs ? kNever : 0;
     const std::vector<int> all = {0, 1};
     f.map = fm.find(f.N, all, 0);
     if (f.map < 0) return false;
@@ -358,7 +359,7 @@ bool place_tiny(ForwardPlan& f, int mem) {
     int size = 0;
     for (const ForwardPass& ps : f.passes) size = std::max(size, ps.bytes);
     f.reloads.clear();
-    const int lo = f.kblk + kKBlockSize;
+    const int lo = f.kblk + f.kbs;
     auto overlaps_map = [&](int a, int n) { return a < f.map + f.N && f.map < a + n; };
     int a = lo, bufs[3], got = 0;
     while (got < 3 && a + size <= mem) {
@@ -415,6 +416,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     // Line buffers: R' reversed below rb, L' above it, so that the consumed
     // prefixes of both form one growing region (docs/firmware.md, section 3).
     f.kblk = 0;
+    f.kbs = kKBlockSize + (p.kc > 0 ? kPopTableBytes : 0);
     f.kr = f.kmax;
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
@@ -425,7 +427,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     else
         kl = std::max(kl, N);
     f.kl = kl;
-    f.rb = f.kblk + kKBlockSize + f.kr;
+    f.rb = f.kblk + f.kbs + f.kr;
     f.costl = f.rb + 2 + f.kl;
     f.costh = f.costl + p.D + 1;
     f.preg = f.costh + p.D + 1;
@@ -434,7 +436,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         // (never reused for pointers: the region lies below the pointer region)
         f.census = p.census;
         f.kc = p.kc;
-        f.co = f.preg - (f.kblk + kKBlockSize);
+        f.co = f.preg - (f.kblk + f.kbs);
         f.preg += f.kr + f.kl + 2;
     }
     f.rbr = f.rb;
@@ -448,7 +450,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         // die when the copies are made (AGG_EXTEND, before the forward pass).
         const int a = p.agg_rx;
         f.agg = a;
-        const int lo = f.kblk + kKBlockSize;
+        const int lo = f.kblk + f.kbs;
         f.rbr = lo + f.kr + a;
         f.rbl = f.rbr + 2 * a;
         const int se = f.rbl + f.kl + a + 1 - lo;
@@ -819,7 +821,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     int end = f.mem_needed;
     // the cost planes and the pointer region are free during the input (with
     // the window: the copies' region too, up to the re-layout's buffers)
-    fp.inl = f.agg > 0 ? f.kblk + kKBlockSize : f.costl;
+    fp.inl = f.agg > 0 ? f.kblk + f.kbs : f.costl;
     if (fp.inl + 2 * fp.hbmax <= mem) {
         fp.inr = fp.inl + fp.hbmax;
         end = std::max(end, fp.inl + 2 * fp.hbmax);
@@ -860,7 +862,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
         end = std::max(end, mem);
     }
     // output rows: after the constant block, avoiding the map
-    fp.out = kKBlockSize;
+    fp.out = f.kbs;
     if (fp.out < f.map + f.N && fp.out + fp.hbmax > f.map) fp.out = f.map + f.N;
     if (fp.out + fp.hbmax > mem) {
         std::ostringstream os;
@@ -934,7 +936,7 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "KLEFT", f.bidir ? f.K[0] : 0);
     equ(os, "KRIGHT", f.bidir ? f.K[1] : f.K[0]);
     equ(os, "KBLK", f.kblk);
-    equ(os, "KBS", kKBlockSize);
+    equ(os, "KBS", f.kbs);
     equ(os, "RB", f.rb);
     equ(os, "KR", f.kr);
     equ(os, "KL", f.kl);

@@ -81,6 +81,7 @@ struct ForwardPlan {
     int kpp = 0;                 // kb*gb - Wd - Wo (16-bit two's complement)
     // Memory (local addresses per PE).
     int kblk = 0;                // per-PE constant block
+    int kbs = 10;                // its size (the census adds its popcount table)
     int rb = 0, kr = 0, kl = 0;  // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i (i <= kl)
     int costl = 0, costh = 0;    // cost planes (levels 0..D, D = pad)
     int preg = 0;                // start of the pointer region
