@@ -30,7 +30,7 @@ set label 2 "video rate, 25 fps (40 ms)" at graph 0.01, first 40 left offset 0,0
 set label 3 "3 points that do not fit / cannot run not shown" at graph 0.01, graph 0.03 left front textcolor rgb "#444444"
 set label 4 "knee: beyond 128x128, relayout_in +240%" at first 128, first 2.125925 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
 set label 5 "knee: beyond 128x128, forward +107%" at first 128, first 2.72315 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
-set label 6 "knee: beyond 128x128, forward +115%" at first 128, first 3.95735 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+set label 6 "knee: beyond 128x128, forward +115%" at first 128, first 3.9054 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
 plot datafile index 0 using 1:2 with linespoints lw 2 pt 7 ps 1.3 title "D=16", \
      datafile index 1 using 1:2 with linespoints lw 2 pt 5 ps 1.3 title "D=32", \
      datafile index 2 using 1:2 with linespoints lw 2 pt 9 ps 1.3 title "D=64", \
