@@ -12,7 +12,7 @@ namespace imap::firmware {
 namespace {
 
 // per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
-constexpr int kKBlockSize = 10;   // 8 constants + 2 bytes of the re-layout
+constexpr int kKBlockSize = 10;     // 8 constants + 2 bytes of the re-layout
 constexpr int kPopTableBytes = 16;  // the census's popcount of a nibble (census.inc)
 constexpr int kNever = INT_MAX;
 

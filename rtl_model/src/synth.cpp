@@ -42,8 +42,9 @@ const SynthFigures& synthesis() {
         if (*detail::synth_pe_json() == '\0') return s;
         s.pe = unit(detail::synth_pe_json(), detail::synth_pe_mem_json(), "imap_pe", &s.tool);
         s.cp = unit(detail::synth_cp_json(), detail::synth_cp_mem_json(), "imap_cp", nullptr);
-        s.params = "PE: NREGS 16, MEM_BYTES 1024, MASK_DEPTH 8, XROWS 4; CP: P 256, "
-                   "IMEM_WORDS 65536, CALL_DEPTH 16";
+        s.params =
+            "PE: NREGS 16, MEM_BYTES 1024, MASK_DEPTH 8, XROWS 4; CP: P 256, "
+            "IMEM_WORDS 65536, CALL_DEPTH 16";
         s.pe_mem_bytes = 1024;
         s.cp_pes = 256;
         s.available = true;
@@ -75,4 +76,6 @@ ArrayArea array_area(const isa::MachineConfig& cfg) {
 // RTL library call run_rtl etc. from their own main(). A weak definition
 // here (as in imap_tlm) satisfies the reference for programs that use only
 // this library's plain parts (area, configurations).
-extern "C" __attribute__((weak)) int sc_main(int, char**) { return 1; }
+extern "C" __attribute__((weak)) int sc_main(int, char**) {
+    return 1;
+}

@@ -88,8 +88,9 @@ void write_gtkw(const WavesView& v) {
     g.end_group();
 
     g.begin_group("ring links");
-    for (int p : v.pes) sig(vec(arr + "ring[" + std::to_string(p) + "]", 7), Format::Hex,
-                            "link PE " + std::to_string(p));
+    for (int p : v.pes)
+        sig(vec(arr + "ring[" + std::to_string(p) + "]", 7), Format::Hex,
+            "link PE " + std::to_string(p));
     g.end_group();
 
     g.begin_group("transfer engine / video port", true);
@@ -123,7 +124,8 @@ void write_gtkw(const WavesView& v) {
         sig(vec(pe + "mstk", v.mask_depth - 1), Format::Bin, "mask stack");
         g.begin_group("PE " + std::to_string(p) + " registers", !first);
         for (int r = 0; r < v.nregs; ++r)
-            sig(vec(pe + "regs[" + std::to_string(r) + "]", 7), Format::Hex, "r" + std::to_string(r));
+            sig(vec(pe + "regs[" + std::to_string(r) + "]", 7), Format::Hex,
+                "r" + std::to_string(r));
         g.end_group();
         g.end_group();
         first = false;

@@ -9,8 +9,8 @@ namespace imap::rtl::detail {
 
 struct WavesView {
     std::string waves_path, gtkw_path;
-    std::string top;        // the model's SystemC name ("dut")
-    std::vector<int> pes;   // PEs shown
+    std::string top;       // the model's SystemC name ("dut")
+    std::vector<int> pes;  // PEs shown
     int nregs = 16, addr_bits = 10, mask_depth = 8;
     uint64_t start_time = 0, span_time = 0;  // the view at start (ps)
 };

@@ -31,7 +31,9 @@ inline std::string describe(const g::Params& p, int N, int H) {
 inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, const Line& ln,
                          bool left) {
     const int N = f.N;
-    auto px = [&](const std::vector<uint8_t>& v, int x) { return x >= 0 && x < N ? v[size_t(x)] : 0; };
+    auto px = [&](const std::vector<uint8_t>& v, int x) {
+        return x >= 0 && x < N ? v[size_t(x)] : 0;
+    };
     for (int k = 0; k <= f.kr; ++k) {
         const int x = !f.bidir ? k - 1 : left ? f.s - k : f.s + k;
         m.mem_write(pe, uint32_t(f.rp_addr(k)), uint8_t(px(ln.R, x)));

@@ -37,7 +37,8 @@ BOOST_AUTO_TEST_CASE(unbuilt_configuration_says_what_to_run) {
     BOOST_CHECK(!rtl::has_configuration(cfg));
     const std::string m = refusal(cfg);
     BOOST_TEST_MESSAGE(m);
-    BOOST_CHECK(m.find("no configuration pes=77 mem_bytes=1024 ext_bytes=65536") != std::string::npos);
+    BOOST_CHECK(m.find("no configuration pes=77 mem_bytes=1024 ext_bytes=65536") !=
+                std::string::npos);
     BOOST_CHECK(m.find("-DIMAP_RTL_EXTRA_CONFIGS=\"") != std::string::npos);
     BOOST_CHECK(m.find("77:1024:65536\"") != std::string::npos);
     BOOST_CHECK(m.find("cmake --build") != std::string::npos);

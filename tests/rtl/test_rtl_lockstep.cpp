@@ -16,11 +16,20 @@ BOOST_AUTO_TEST_CASE(lockstep_passes_on_dp_firmware) {
     isa::MachineConfig cfg;
     cfg.pes = P;
     if (RTL_TEST_COSTS) {
-        for (const auto& [n, v] : std::vector<std::pair<const char*, int>>{
-                 {"alu", 2}, {"mem", 3}, {"indirect_extra", 0}, {"ring_hop", 2}, {"mask", 2},
-                 {"status", 3}, {"cp", 2}, {"branch_taken", 0}, {"video_line", 4},
-                 {"xfer_setup", 0}, {"ext_bytes_per_cycle", 3}, {"shift_bits", 2},
-                 {"minmax_extra", 1}})
+        for (const auto& [n, v] :
+             std::vector<std::pair<const char*, int>>{{"alu", 2},
+                                                      {"mem", 3},
+                                                      {"indirect_extra", 0},
+                                                      {"ring_hop", 2},
+                                                      {"mask", 2},
+                                                      {"status", 3},
+                                                      {"cp", 2},
+                                                      {"branch_taken", 0},
+                                                      {"video_line", 4},
+                                                      {"xfer_setup", 0},
+                                                      {"ext_bytes_per_cycle", 3},
+                                                      {"shift_bits", 2},
+                                                      {"minmax_extra", 1}})
             cfg.costs.set(n, v);
         cfg.validate();
     }

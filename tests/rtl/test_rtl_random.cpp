@@ -21,8 +21,8 @@ BOOST_AUTO_TEST_CASE(random_programs_agree_with_the_isa) {
     for (const std::string& f : r.failures) BOOST_ERROR(f);
     BOOST_CHECK_EQUAL(r.programs, o.programs);
     BOOST_CHECK_EQUAL(r.passed, o.programs);
-    std::printf("random suite: %d programs, %llu instructions, %llu cycles, %.1f s\n%s",
-                r.programs, static_cast<unsigned long long>(r.instructions),
+    std::printf("random suite: %d programs, %llu instructions, %llu cycles, %.1f s\n%s", r.programs,
+                static_cast<unsigned long long>(r.instructions),
                 static_cast<unsigned long long>(r.cycles), r.wall_s, r.coverage.table().c_str());
     nlohmann::json j = r.coverage.json();
     j["programs"] = r.programs;
@@ -33,7 +33,7 @@ BOOST_AUTO_TEST_CASE(random_programs_agree_with_the_isa) {
     BOOST_CHECK_GE(static_cast<double>(r.coverage.covered()),
                    0.95 * static_cast<double>(r.coverage.bins()));
     for (const std::string& b : r.coverage.uncovered())
-        BOOST_CHECK_MESSAGE(b.rfind("ring/", 0) != 0 && b.rfind("xfer/", 0) != 0 &&
-                                b.rfind("mask/", 0) != 0,
-                            "uncovered " << b);
+        BOOST_CHECK_MESSAGE(
+            b.rfind("ring/", 0) != 0 && b.rfind("xfer/", 0) != 0 && b.rfind("mask/", 0) != 0,
+            "uncovered " << b);
 }

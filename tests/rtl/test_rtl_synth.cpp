@@ -13,8 +13,8 @@ BOOST_AUTO_TEST_CASE(pe_and_cp_are_synthesized) {
     const rtl::SynthFigures& s = rtl::synthesis();
     BOOST_REQUIRE(s.available);
     BOOST_TEST_MESSAGE("PE " << s.pe.cells << " cells (" << s.pe.flops << " flops), "
-                             << s.pe.memory_bits << " memory bits; CP " << s.cp.cells
-                             << " cells, " << s.cp.memory_bits << " memory bits; " << s.tool);
+                             << s.pe.memory_bits << " memory bits; CP " << s.cp.cells << " cells, "
+                             << s.cp.memory_bits << " memory bits; " << s.tool);
     // a PE: an 8-bit datapath with a 16 x 8 register file and 1 KB of memory
     BOOST_CHECK_GT(s.pe.cells, 500u);
     BOOST_CHECK_LT(s.pe.cells, 20000u);

@@ -22,8 +22,8 @@ struct UnitArea {
 struct SynthFigures {
     bool available = false;  // false when the build had no yosys
     UnitArea pe, cp;
-    std::string tool;    // "Yosys 0.23 ..."
-    std::string params;  // the HDL parameters synthesized
+    std::string tool;      // "Yosys 0.23 ..."
+    std::string params;    // the HDL parameters synthesized
     int pe_mem_bytes = 0;  // the PE's local memory in that synthesis
     int cp_pes = 0;        // the PE count of the CP's synthesis
 };
@@ -32,7 +32,7 @@ struct SynthFigures {
 const SynthFigures& synthesis();
 
 struct ArrayArea {
-    uint64_t cells = 0;        // P x PE cells + CP cells
+    uint64_t cells = 0;  // P x PE cells + CP cells
     uint64_t pe_cells = 0, cp_cells = 0;
     uint64_t memory_bits = 0;  // on chip: P x (registers + local memory) + CP memories
     uint64_t ext_bits = 0;     // the external memory (board level, off chip)
