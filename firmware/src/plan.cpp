@@ -484,24 +484,37 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
            << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
-    if (tiny) {
-        if (!place_tiny(f, mem)) {
-            std::ostringstream os;
-            os << "does not fit: the line buffers, costs, output line and three pointer "
-                  "columns need more than the "
-               << mem << " bytes of local memory per PE (mem_bytes)";
-            throw FirmwareError(os.str());
+    // The error names the least local memory that would do: found by the
+    // same placement (it is monotone in the memory size).
+    auto too_small = [&](const char* what, auto&& fits) {
+        int lo = mem + 1, hi = 1 << 16;
+        std::ostringstream os;
+        os << "does not fit: ";
+        if (fits(hi)) {
+            while (lo < hi) {
+                const int mid = lo + (hi - lo) / 2;
+                if (fits(mid))
+                    hi = mid;
+                else
+                    lo = mid + 1;
+            }
+            os << "needs at least " << lo << " bytes of local memory per PE for " << what;
+        } else {
+            os << "needs more than " << hi << " bytes of local memory per PE for " << what;
         }
+        os << " (have " << mem << ", mem_bytes)";
+        return FirmwareError(os.str());
+    };
+    if (tiny) {
+        if (!place_tiny(f, mem))
+            throw too_small("the line buffers, costs, output line and three pointer columns",
+                            [&](int m) { return place_tiny(f, m); });
     } else if (!place_pointers(f, mem, 0)) {
         // The fewest spilled columns (the first ones) that let the rest fit.
         int lo = 1, hi = f.kmax;
-        if (!place_pointers(f, mem, hi)) {
-            std::ostringstream os;
-            os << "does not fit: the line buffers, costs, output line and one pointer column "
-                  "need more than the "
-               << mem << " bytes of local memory per PE (mem_bytes)";
-            throw FirmwareError(os.str());
-        }
+        if (!place_pointers(f, mem, hi))
+            throw too_small("the line buffers, costs, output line and one pointer column",
+                            [&](int m) { return place_pointers(f, m, f.kmax); });
         while (lo < hi) {
             const int mid = lo + (hi - lo) / 2;
             if (place_pointers(f, mem, mid))
