@@ -48,6 +48,7 @@ tloop:
         PLAN_IN
         DP_EXCHANGE
         AGG_EXTEND
+        BT_BOUNDS
         DP_INIT
         cld     c0, [#TS0]
         cst     c0, [#TSLOT_CUR]
@@ -106,6 +107,7 @@ batch:
         PLAN_IN
         DP_EXCHANGE
         AGG_EXTEND
+        BT_BOUNDS
         DP_INIT
         DP_FORWARD
         DP_MEET

@@ -157,8 +157,13 @@ bool place_pointers(ForwardPlan& f, int mem, int spill) {
         for (int a = f.preg; a < mem; ++a) fm.avail[p][a] = 1;
         if (f.agg > 0) {
             // the window copies: Rx[m], Lx[m] (and codes) die after column m + agg
-            for (int c = 0; c < (f.kc > 0 ? 2 : 1); ++c) {
-                const int off = c * f.cxo;
+            std::vector<int> offs = {0};
+            if (f.kc > 0) offs.push_back(f.cxo);
+            if (f.bt) {
+                offs.push_back(f.blo);
+                offs.push_back(f.bhi);
+            }
+            for (int off : offs) {
                 for (int m = 1 - f.agg; m <= f.kr + f.agg; ++m)
                     fm.avail[p][f.rbr - m + off] = std::max(1, m + f.agg + 1);
                 for (int m = 1 - f.agg; m <= f.kl + f.agg; ++m)
@@ -286,7 +291,8 @@ void check_options(const golden::Params& p, bool census_ok) {
     const golden::Params off;
     std::string missing;
     auto add = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
-    if (p.dissim != off.dissim) add("--dissim " + std::string(golden::to_string(p.dissim)));
+    if (p.dissim != off.dissim && !census_ok)
+        add("--dissim " + std::string(golden::to_string(p.dissim)));
     if (p.kc != off.kc && !census_ok) add("--kc " + std::to_string(p.kc));
     if (p.agg_rx != off.agg_rx && (!census_ok || p.agg_rx > 2))
         add("--agg-rx " + std::to_string(p.agg_rx));
@@ -294,9 +300,9 @@ void check_options(const golden::Params& p, bool census_ok) {
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
                             (census_ok
-                                 ? " (it runs SPEC A.1-A.7 with --ad-max, --kc/--census, --agg-rx "
-                                   "0..2 and --mode joint; needs --dissim ad, --agg-rx <= 2, "
-                                   "--agg-ry 0; the golden runs all)"
+                                 ? " (it runs SPEC A.1-A.7 with --ad-max, --dissim ad/bt, "
+                                   "--kc/--census, --agg-rx 0..2 and --mode joint; needs "
+                                   "--agg-rx <= 2, --agg-ry 0; the golden runs all)"
                                  : " (the forward-pass test layout runs SPEC A.1-A.7 with "
                                    "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
                                    "--agg-rx 0, --agg-ry 0)"));
@@ -340,6 +346,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
 golden::Params firmware_part(const golden::Params& p) {
     golden::Params q = golden::paper_part(p);
     q.ad_max = p.ad_max;  // run in the firmware (WM_ADD, DP_MEET)
+    q.dissim = p.dissim;  // bt: BT_BOUNDS and WM_ADD
     q.mode = p.mode;
     if (p.kc > 0) q.km = p.km;  // the census keeps the cost valid without |a - b|
     q.kc = p.kc;                // the census (census.inc)
@@ -443,6 +450,15 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.co = f.preg - (f.kblk + f.kbs);
         f.preg += f.kr + f.kl + 2;
     }
+    if (p.dissim == golden::Dissim::Bt) {
+        // Birchfield-Tomasi bounds lo, hi beside the line buffers, at their
+        // addresses + blo / + bhi (below the pointer region, as the codes)
+        f.bt = true;
+        f.blo = f.preg - (f.kblk + f.kbs);
+        f.preg += f.kr + f.kl + 2;
+        f.bhi = f.preg - (f.kblk + f.kbs);
+        f.preg += f.kr + f.kl + 2;
+    }
     f.rbr = f.rb;
     f.rbl = f.rb + 1;
     const int mem0 = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
@@ -459,7 +475,12 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.rbl = f.rbr + 2 * a;
         const int se = f.rbl + f.kl + a + 1 - lo;
         f.cxo = p.kc > 0 ? se : 0;
-        f.costl = lo + se * (p.kc > 0 ? 2 : 1);
+        const int copies = (p.kc > 0 ? 2 : 1);
+        if (f.bt) {
+            f.blo = se * copies;
+            f.bhi = f.blo + se;
+        }
+        f.costl = lo + se * (copies + (f.bt ? 2 : 0));
         f.costh = f.costl + p.D + 1;
         f.preg = f.costh + p.D + 1;
         const int s0 = f.kr + f.kl + 2;
@@ -987,6 +1008,9 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "RBR", f.rbr);
     equ(os, "RBL", f.rbl);
     equ(os, "CNO", f.agg > 0 ? f.cxo : f.co);
+    equ(os, "BT", f.bt ? 1 : 0);
+    equ(os, "BLO", f.blo);
+    equ(os, "BHI", f.bhi);
     equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
@@ -1045,8 +1069,39 @@ void agg_macros(std::ostringstream& os, const ForwardPlan& f) {
     os << ".endm\n";
 }
 
+// The Birchfield-Tomasi bounds (BT_BOUNDS in census.inc): one BTX line per
+// byte the node reads (the line buffers, or the window's copies), with the
+// three pixels X-1, X, X+1 of its site X (clamped into the ROI, as
+// docs/golden.md requires) on each kind: address and whether it is the
+// kind's own byte (else the partner's, one ring hop away).
+void bt_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_BT\n";
+    if (f.bt) {
+        auto clampx = [&](int X) { return std::max(0, std::min(f.N - 1, X)); };
+        for (int img = 0; img < 2; ++img) {
+            const int top = img == 0 ? f.kr : f.kl;
+            for (int m = f.agg > 0 ? 1 - f.agg : 0; m <= top + f.agg; ++m) {
+                const int dest = img == 0 ? f.rbr - m : f.rbl + m;
+                os << "        BTX " << dest;
+                for (int kind = 0; kind < 2; ++kind) {
+                    const int kk = f.kinds == 2 ? kind : 0;
+                    const int X = clampx(img == 0 ? site_r(f, kk, m) : site_l(f, kk, m));
+                    for (int u = -1; u <= 1; ++u) {
+                        const int Y = clampx(X + u);
+                        const int src = img == 0 ? addr_r(f, Y) : addr_l(f, Y);
+                        os << ", " << src << ", " << (holder(f, Y) == kk ? 1 : 0);
+                    }
+                }
+                os << "\n";
+            }
+        }
+    }
+    os << ".endm\n";
+}
+
 void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
     agg_macros(os, f);
+    bt_macros(os, f);
     os << ".macro PLAN_FORWARD\n";
     size_t si = 0;
     for (size_t i = 0; i < f.passes.size(); ++i) {

@@ -67,7 +67,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.per_node += 1;  // mini
         c.items.push_back(fmt("ad-max", 1, 0, 0));
     }
-    if (p.dissim == Dissim::Bt) {
+    if (p.dissim == Dissim::Bt && !in_firmware) {  // the firmware runs bt (BT_BOUNDS, WM_ADD)
         // two loads (lo, hi of the left pixel) and 10 ALU operations instead of
         // max/min/sub; lo/hi of both images per pixel: 2 loads, 2 adds, 2
         // shifts, 4 min/max, 2 stores.

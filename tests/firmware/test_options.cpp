@@ -117,7 +117,6 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
         const char* expect;
     };
     const Case cases[] = {
-        {"bt", [](g::Params& p) { p.dissim = g::Dissim::Bt; }, "--dissim bt"},
         {"agg-rx", [](g::Params& p) { p.agg_rx = 3; }, "--agg-rx 3"},
         {"agg-ry", [](g::Params& p) { p.agg_ry = 1; }, "--agg-ry 1"},
     };
@@ -131,6 +130,20 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
         }
         isa::MachineConfig cfg;  // the forward-pass planner refuses them too
         BOOST_CHECK_THROW(fw::plan_forward(p, roi.w, cfg), fw::FirmwareError);
+    }
+    {
+        // the forward-pass test layout (host-filled line buffers) has no bounds
+        g::Params b;
+        b.dissim = g::Dissim::Bt;
+        BOOST_TEST(refusal(b, roi).empty());
+        isa::MachineConfig cfg;
+        try {
+            fw::plan_forward(b, roi.w, cfg);
+            BOOST_ERROR("plan_forward accepted --dissim bt");
+        } catch (const fw::FirmwareError& e) {
+            BOOST_TEST(std::string(e.what()).find("--dissim bt (the forward-pass test layout") !=
+                       std::string::npos);
+        }
     }
     g::Params q5 = g::preset("quality");
     q5.agg_ry = 2;  // the 5x5 window (trade-off variant quality-5x5)
@@ -282,6 +295,7 @@ BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
         const g::Params f = fw::firmware_part(p);
         BOOST_TEST_CONTEXT(v.name) {
             BOOST_TEST(f.ad_max == p.ad_max);
+            BOOST_TEST((f.dissim == p.dissim));
             BOOST_TEST((f.mode == p.mode));
             BOOST_TEST((f.kc == p.kc && f.census == p.census));
             BOOST_TEST(f.agg_ry == 0);
@@ -457,4 +471,110 @@ BOOST_AUTO_TEST_CASE(window_grid_and_headline) {
     BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).find("= 38250 exceeds") != std::string::npos);
     r.agg_rx = 1;  // 22,950
     BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).empty());
+}
+
+BOOST_AUTO_TEST_CASE(bt_random_frames) {
+    // SPEC A.9 dissim bt: with and without the census and the horizontal
+    // window, every mode, batches, video segments and the one-line-per-batch
+    // mode (without the census), ad-max, random weights.
+    std::mt19937 rng(4711);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int it = 0; it < 48; ++it) {
+        const int W = uni(4, 44), Hi = uni(1, 12);
+        g::Roi roi;
+        roi.w = uni(2, W);
+        roi.h = uni(1, Hi);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, Hi - roi.h);
+        const bool census = uni(0, 2) == 0;
+        g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
+        p.dissim = g::Dissim::Bt;
+        if (p.km == 0) p.km = 1;
+        p.agg_rx = uni(0, 3) == 0 ? 0 : uni(0, 2);
+        if (p.kc * 8 > 2000) p.kc = 100;
+        while ((2 * p.agg_rx + 1) * (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc) >
+                   30000 &&
+               p.km > 1)
+            p.km /= 2;
+        if ((2 * p.agg_rx + 1) * (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc) > 30000)
+            p.kc = 1;
+        const int span = p.mode == g::Mode::Single ? 1 : 2;
+        const int P = census ? uni(std::max({2, roi.w, span * roi.h}), 48)
+                             : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                           << " bt agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census
+                           << " km=" << p.km << " ad-max=" << p.ad_max << " vote=" << p.vote
+                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+            check_frame(p, fr, roi, P);
+        }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(bt_grid_modes_window_census_and_headline) {
+    std::mt19937 rng(2718);
+    const Frame fr = random_frame(rng, 72, 24, 24);
+    const g::Roi roi{5, 3, 60, 18};
+    for (int mode = 0; mode < 3; ++mode)
+        for (int rx : {0, 1, 2})
+            for (int kc : {0, 4})
+                for (int ad : {16, 255}) {
+                    g::Params p;
+                    p.D = 20;
+                    p.mode = mode == 0   ? g::Mode::Single
+                             : mode == 1 ? g::Mode::Bidir
+                                         : g::Mode::Joint;
+                    p.dissim = g::Dissim::Bt;
+                    p.km = kc > 0 ? 1 : 8;
+                    p.kb = kc > 0 ? 0 : 1;
+                    p.gb = kc > 0 ? 0 : 64;
+                    p.Wo = p.Wd = 80;
+                    p.ad_max = ad;
+                    p.kc = kc;
+                    p.agg_rx = rx;
+                    BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                                       << " bt agg-rx=" << rx << " kc=" << kc << " ad-max=" << ad) {
+                        check_frame(p, fr, roi, 64);
+                    }
+                }
+    // bt differs from ad on this scene (the test can tell them apart)
+    {
+        g::Params a;
+        a.D = 20;
+        g::Params b = a;
+        b.dissim = g::Dissim::Bt;
+        uint64_t ca = 0, cb = 0;
+        check_frame(a, fr, roi, 64, &ca);
+        check_frame(b, fr, roi, 64, &cb);
+        BOOST_TEST(cb > ca);  // the bounds phase and the longer node
+    }
+    // the quality preset with bt at the headline
+    const Frame big = random_frame(rng, 160, 140, 40);
+    g::Params q = g::preset("quality");
+    q.dissim = g::Dissim::Bt;
+    q.D = 64;
+    uint64_t cycles = 0;
+    check_frame(q, big, g::Roi{16, 6, 128, 128}, 256, &cycles);
+    BOOST_TEST_MESSAGE("quality + bt headline cycles: " << cycles);
+}
+
+BOOST_AUTO_TEST_CASE(bt_memory_refusal_is_precise) {
+    // the bounds take 2 bytes per line-buffer byte: a memory that fits ad but
+    // not bt is refused with the least memory that would do
+    g::Params p;
+    p.D = 32;
+    const g::Roi roi{0, 0, 96, 4};
+    isa::MachineConfig cfg;
+    const fw::FramePlan ad = fw::plan_frame(p, roi, cfg);
+    p.dissim = g::Dissim::Bt;
+    const fw::FramePlan bt = fw::plan_frame(p, roi, cfg);
+    BOOST_TEST(bt.f.preg > ad.f.preg);
+    cfg.mem_bytes = static_cast<uint32_t>(bt.f.preg - 1);
+    try {
+        fw::plan_frame(p, roi, cfg);
+        BOOST_ERROR("bt accepted with too little memory");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()).find("does not fit: needs at least") != std::string::npos,
+                   e.what());
+    }
 }

@@ -92,6 +92,10 @@ struct ForwardPlan {
     // clamped copies of the line buffers, Rx[m] at rbr - m, Lx[m] at rbl + m
     // (m from 1 - agg to kr + agg / kl + agg), codes at + cxo.
     int agg = 0, rbr = 0, rbl = 0, cxo = 0;
+    // SPEC A.9 dissim bt: the Birchfield-Tomasi bounds lo/hi of every byte the
+    // node reads (line buffers, or the window's copies) at its address + blo / + bhi.
+    bool bt = false;
+    int blo = 0, bhi = 0;
     int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
     int map = 0;      // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
