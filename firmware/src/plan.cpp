@@ -299,13 +299,12 @@ void check_options(const golden::Params& p, bool census_ok) {
     if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
-                            (census_ok
-                                 ? " (it runs SPEC A.1-A.7 with --ad-max, --dissim ad/bt, "
-                                   "--kc/--census, --agg-rx 0..2 and --mode joint; needs "
-                                   "--agg-rx <= 2, --agg-ry 0; the golden runs all)"
-                                 : " (the forward-pass test layout runs SPEC A.1-A.7 with "
-                                   "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
-                                   "--agg-rx 0, --agg-ry 0)"));
+                            (census_ok ? " (it runs SPEC A.1-A.7 with --ad-max, --dissim ad/bt, "
+                                         "--kc/--census, --agg-rx 0..2 and --mode joint; needs "
+                                         "--agg-rx <= 2, --agg-ry 0; the golden runs all)"
+                                       : " (the forward-pass test layout runs SPEC A.1-A.7 with "
+                                         "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
+                                         "--agg-rx 0, --agg-ry 0)"));
 }
 
 void check_range(const golden::Params& p) {
@@ -491,9 +490,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
             std::ostringstream os;
             os << "does not fit: --agg-rx " << a << " needs at least "
                << f.costl + s0 * (p.kc > 0 ? 2 : 1)
-               << " bytes of local memory per PE for the line buffers and their window copies "
-                  "(have "
-               << mem0 << ", mem_bytes)";
+               << " bytes of local memory per PE for the line buffers and their window copies"
+               << (f.bt ? " (with the bt bounds)" : "") << " (have " << mem0 << ", mem_bytes)";
             throw FirmwareError(os.str());
         }
     }
@@ -501,8 +499,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     if (f.preg > mem) {
         std::ostringstream os;
         os << "does not fit: needs at least " << f.preg + 1
-           << " bytes of local memory per PE for the line buffers and costs (have " << mem
-           << ", mem_bytes)";
+           << " bytes of local memory per PE for the line buffers"
+           << (f.bt ? ", their bt bounds" : "") << " and costs (have " << mem << ", mem_bytes)";
         throw FirmwareError(os.str());
     }
     // The error names the least local memory that would do: found by the
