@@ -605,6 +605,11 @@ BOOST_AUTO_TEST_CASE(cost_estimate_arithmetic) {
     h.D = 64;
     BOOST_TEST(g::estimate_options(h, 128, /*in_firmware=*/true).cycles == 0);
     BOOST_TEST(g::estimate_options(h, 128).cycles > 0);
+    // bt runs in the firmware too (BT_BOUNDS, WM_ADD): estimated only outside it
+    g::Params b = h;
+    b.dissim = g::Dissim::Bt;
+    BOOST_TEST(g::estimate_options(b, 128, /*in_firmware=*/true).cycles == 0);
+    BOOST_TEST(g::estimate_options(b, 128).cycles > g::estimate_options(h, 128).cycles);
     const g::Params pp = g::paper_part(q);
     BOOST_TEST(!g::uses_options(pp));
     BOOST_TEST((pp.mode == g::Mode::Bidir && pp.km == q.km && pp.Wo == q.Wo));

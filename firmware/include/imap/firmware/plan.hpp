@@ -119,8 +119,8 @@ struct ForwardPlan {
 
 // The part of `p` the firmware runs (docs/firmware.md, section 10): the
 // same parameters with the SPEC A.9 options it does not implement turned
-// off (dissim ad, kc 0, no aggregation; a census-only cost keeps km = 1);
-// --ad-max and --mode joint stay. For the trade-off table's measured
+// off (a vertical window: no aggregation); --ad-max, --mode joint,
+// --dissim bt, the census and a horizontal window stay. For the trade-off table's measured
 // part; a parameter set with those options is refused by plan_frame.
 golden::Params firmware_part(const golden::Params& p);
 

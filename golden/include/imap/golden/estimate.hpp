@@ -31,7 +31,8 @@ struct OptionCost {
 // Added cost of the A.9 options of `p` for one batch of lines of a ROI of
 // width N (p.D levels); zero for the paper's algorithm. Joint mode is
 // costed as bidir plus the meeting of the two wavefronts. in_firmware: the
-// firmware runs --ad-max and --mode joint (docs/firmware.md, section 10), so
+// firmware runs --ad-max, --mode joint, --dissim bt, the census and a horizontal
+// window (docs/firmware.md, section 10), so
 // their cost is in the measured part and not estimated here (the other
 // options still use p.ad_max for the size of the pixel term and joint's
 // column count).
