@@ -79,7 +79,7 @@ module imap_cp
     input logic [15:0] memx_pe,
     input logic [15:0] memx_off,  // its per-PE offset (rb:ra), for the fault report
     input logic [16:0] active_n,
-    // external-memory transfer engine and video unit (imap_board)
+    // external-memory transfer engine and video unit (the board, outside the chip)
     output logic xe_pf,  // prefetch ext rows [xe_prow, +XROWS) onto the row bus
     output logic [31:0] xe_prow,
     output logic xe_wr,  // write xe_n ext rows from the PEs' row ports
