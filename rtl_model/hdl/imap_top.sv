@@ -2,9 +2,9 @@
 // IMAP-VISION array, top level of the register-transfer design (the chip):
 // the control processor, the PE array (P PEs with the ring and the mask bus)
 // and the performance counters. The board (external memory, video port) is
-// outside: the chip drives its row interface and video handshake through the
-// ports below (the testbench's board model: rtl_model/verif/imap_board.sv,
-// instantiated next to the chip by rtl_model/verif/imap_tb.sv). Every cost-table entry and the
+// outside the chip: the chip drives its row interface and video handshake
+// through the ports below (the external-memory rows and the video line
+// port of docs/isa.md). Every cost-table entry and the
 // run-time machine configuration are strap inputs; the sizes are
 // parameters (docs/rtl.md, "Configurations").
 module imap_top
