@@ -79,7 +79,7 @@ module imap_cp
     input logic [15:0] memx_pe,
     input logic [15:0] memx_off,  // its per-PE offset (rb:ra), for the fault report
     input logic [16:0] active_n,
-    // external-memory transfer engine and video unit (imap_board)
+    // external-memory transfer engine and video unit (the board, outside the chip)
     output logic xe_pf,  // prefetch ext rows [xe_prow, +XROWS) onto the row bus
     output logic [31:0] xe_prow,
     output logic xe_wr,  // write xe_n ext rows from the PEs' row ports
@@ -176,10 +176,6 @@ module imap_cp
   logic [31:0] f_pe /*verilator public_flat_rd*/;
   logic [63:0] f_addr /*verilator public_flat_rd*/;
 
-
-`ifndef SYNTHESIS
-  import imap_dpi_pkg::*;
-`endif
 
   // ===========================================================================
   // Decode (D): combinational
@@ -816,9 +812,6 @@ module imap_cp
         f_cyc <= mcycle;
         f_pe <= x_fpe;
         f_addr <= x_fad;
-`ifndef SYNTHESIS
-        imap_rtl_fault(int'(x_flt), int'(x_pc), mcycle, int'(x_fpe), x_fad);
-`endif
       end
 
       // ---- X: the sequencer
@@ -872,16 +865,6 @@ module imap_cp
         msp <= msp_next;
         if (x_kind == imap_pkg::K_MASK) m_dirty <= 1'b1;
         if (x_bubble) bub <= c_branch_taken;
-`ifndef SYNTHESIS
-        if (cfg_trace) begin
-          if (x_op == imap_pkg::OP_CST) imap_rtl_param_write(int'(x_addr[7:0]), int'(creg[x_ir[11:8]]));
-          imap_rtl_retire(
-              instret, int'(x_pc), x_ir, x_cyc0, x_zero ? mcycle : mcycle + 64'd1,
-              {16'h0, (x_op == imap_pkg::OP_PHASE) ? x_ir[47:32] : phase_q}, x_cwe ? int'(x_cidx) : -1,
-              int'(x_cres), int'(msp_next), int'(csp_next),
-              {15'h0, m_dirty ? active_n : m_active}, x_op == imap_pkg::OP_HALT);
-        end
-`endif
       end
 
       // ---- D -> X

@@ -1,7 +1,10 @@
 `include "imap_mutants.svh"
-// IMAP-VISION array, top level of the register-transfer design: the control
-// processor, the PE array (P PEs with the ring and the mask bus) and the
-// board (external memory, video port). Every cost-table entry and the
+// IMAP-VISION array, top level of the register-transfer design (the chip):
+// the control processor, the PE array (P PEs with the ring and the mask bus)
+// and the performance counters. The board (external memory, video port) is
+// outside the chip: the chip drives its row interface and video handshake
+// through the ports below (the external-memory rows and the video line
+// port of docs/isa.md). Every cost-table entry and the
 // run-time machine configuration are strap inputs; the sizes are
 // parameters (docs/rtl.md, "Configurations").
 module imap_top
@@ -46,7 +49,29 @@ module imap_top
     input logic cfg_ext_on,
     input logic [63:0] cfg_watchdog,
     input logic cfg_trace,
-    output logic done
+    output logic done,
+    // board: external-memory row interface (prefetch xe_pf of XROWS rows from
+    // xe_prow onto rbus; write xe_wr of xe_n rows at xe_wrow from rrow)
+    output logic xe_pf,
+    output logic [31:0] xe_prow,
+    output logic xe_wr,
+    output logic [31:0] xe_wrow,
+    output logic [2:0] xe_n,
+    output logic [XROWS*8-1:0] rrow[P],
+    input logic [P*XROWS*8-1:0] rbus,  // row bus: PE p reads slice p
+    // board: video line port (vid_open when vin / vout enters execute, the
+    // board answers vid_status at the next edge and loads a vin line onto
+    // rbus; vid_put sends rrow's lane 0 when vout commits)
+    output logic vid_open,
+    output logic vid_out,
+    output logic [0:0] vid_oport,
+    output logic [31:0] vid_oy,
+    output logic [31:0] vid_ox,
+    output logic vid_put,
+    output logic [0:0] vid_pport,
+    output logic [31:0] vid_py,
+    output logic [31:0] vid_px,
+    input logic [1:0] vid_status
 );
 
 
@@ -56,13 +81,6 @@ module imap_top
   logic red_status, red_memx, red_count, any_t, all_t, memx_bad;
   logic [15:0] memx_pe, memx_off;
   logic [16:0] active_n;
-  logic xe_pf, xe_wr, vid_open, vid_out, vid_put;
-  logic [31:0] xe_prow, xe_wrow, vid_oy, vid_ox, vid_py, vid_px;
-  logic [2:0] xe_n;
-  logic [0:0] vid_oport, vid_pport;
-  logic [1:0] vid_status;
-  logic [P*XROWS*8-1:0] rbus;  // row bus: PE p reads slice p
-  logic [XROWS*8-1:0] rrow[P];
   logic halted, faulted;
   logic [63:0] mcycle;
   logic ev_cycle, ev_pe, ev_retire;
@@ -158,15 +176,6 @@ module imap_top
 `ifdef IMAP_MUTANTS
       .mutant(mutant_q),
 `endif
-      .*
-  );
-
-  imap_board #(
-      .P(P),
-      .EXT_BYTES(EXT_BYTES),
-      .XROWS(XROWS)
-  ) u_board (
-      .trace(cfg_trace_q),
       .*
   );
 

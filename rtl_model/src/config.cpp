@@ -117,14 +117,16 @@ std::vector<std::string> RtlWaves::scopes(const std::string& top, int pes_total)
     auto has = [&](const char* g) {
         return groups.empty() || std::find(groups.begin(), groups.end(), g) != groups.end();
     };
-    const std::string t = top + ".imap_top";
+    const std::string tb = top + ".imap_tb", t = tb + ".u_chip";
     std::vector<std::string> s;
     if (groups.empty() && pes.empty()) return s;  // everything
-    // top-level ports (clk, straps, done) and the signals of imap_top itself
-    // (not the units below it: "!", model_impl.hpp)
+    // the testbench top's ports (clk, straps, done) and the signals of the
+    // chip imap_top itself (its board interface, the strap registers), not
+    // the units below them ("!", model_impl.hpp)
+    s.push_back(tb + "!");
     s.push_back(t + "!");
     if (has("cp")) s.push_back(t + ".u_cp");
-    if (has("board")) s.push_back(t + ".u_board");
+    if (has("board")) s.push_back(tb + ".u_board");
     if (has("array")) s.push_back(t + ".u_array!");  // ring links, mask bus; the PEs below
     if (has("pe")) {
         if (pes.empty())

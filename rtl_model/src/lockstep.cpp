@@ -96,7 +96,7 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
             return;
         }
         j.waves_path = wpath;
-        j.waves_scopes = {"replay.imap_top"};
+        j.waves_scopes = {"replay.imap_tb"};
         j.waves_t1 = chk.div.cycle;
         j.waves_t0 = chk.div.cycle > lcfg.waves_cycles ? chk.div.cycle - lcfg.waves_cycles : 0;
         j.listener = nullptr;

@@ -209,7 +209,7 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
     if (!rcfg.waves.path.empty()) {
         job.waves_path = rcfg.waves.path;
         job.waves_scopes = rcfg.waves.scopes("dut", cfg.pes);
-        if (job.waves_scopes.empty()) job.waves_scopes.push_back("dut.imap_top");
+        if (job.waves_scopes.empty()) job.waves_scopes.push_back("dut.imap_tb");
         job.waves_t0 = rcfg.waves.t0;
         job.waves_t1 = rcfg.waves.t1;
     }

@@ -33,7 +33,8 @@ namespace imap::rtl::detail {
 
 using Image = isa::ImageVideoPort::Image;
 
-// The design's retire record (imap_dpi_pkg::imap_rtl_retire).
+// The design's retire record (imap_dpi_pkg::imap_rtl_retire, made by the
+// retire monitor imap_cp_monitor.sv bound into the CP).
 struct RetireRecord {
     uint64_t index = 0;
     uint32_t pc = 0;

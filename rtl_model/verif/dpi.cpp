@@ -1,5 +1,6 @@
-// The DPI-C imports of the design (rtl_model/hdl/imap_dpi_pkg.sv): the
-// trace port, the fault report and the video line port. One bench runs at a
+// The DPI-C imports of the testbench (rtl_model/verif/imap_dpi_pkg.sv): the
+// trace port and the fault report (the CP's retire monitor) and the video
+// line port (the board model). One bench runs at a
 // time in a process; its calls go to it.
 #include "bench.hpp"
 #include "svdpi.h"

@@ -1,5 +1,6 @@
 // The testbench's view of one verilated configuration of the design
-// (rtl_model/hdl/imap_top.sv): the SystemC signals bound to its ports, the
+// (its testbench top rtl_model/verif/imap_tb.sv around the chip
+// rtl_model/hdl/imap_top.sv): the SystemC signals bound to its ports, the
 // backdoor pointers into its state elements (from Verilator's scope table;
 // simulation only: final-state readout, clearing memories between programs,
 // fault injection) and the Verilator wave writer of a traced variant.
@@ -13,7 +14,7 @@
 
 namespace imap::rtl::detail {
 
-// The signals of imap_top's ports (Verilator --sc types: 1 bit bool, up to
+// The signals of imap_tb's ports (Verilator --sc types: 1 bit bool, up to
 // 32 bits uint32_t, up to 64 bits uint64_t).
 struct Ports : sc_core::sc_module {
     explicit Ports(sc_core::sc_module_name n) : sc_core::sc_module(n) {}

@@ -76,7 +76,9 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
 
     Backdoor backdoor() override {
         Backdoor b;
-        const std::string top = std::string(dut_.name()) + ".imap_top";
+        // the testbench top (imap_tb): the chip u_chip and the board model u_board
+        const std::string top = std::string(dut_.name()) + ".imap_tb";
+        const std::string chip = top + ".u_chip";
         auto var = [&](const std::string& scope, const char* name, size_t bytes) -> void* {
             const VerilatedScope* s = Verilated::scopeFind(scope.c_str());
             if (!s) throw std::runtime_error("RTL backdoor: no scope " + scope);
@@ -89,7 +91,7 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
                                          std::to_string(bytes));
             return v->datap();
         };
-        const std::string cp = top + ".u_cp", perf = top + ".u_perf", arr = top + ".u_array";
+        const std::string cp = chip + ".u_cp", perf = chip + ".u_perf", arr = chip + ".u_array";
         b.creg = static_cast<uint32_t*>(var(cp, "creg", 64));
         b.param = static_cast<uint32_t*>(var(cp, "param", 1024));
         b.csp = static_cast<uint16_t*>(var(cp, "csp", 2));

@@ -16,7 +16,8 @@ void write_gtkw(const WavesView& v) {
     const std::string dump = std::filesystem::path(v.waves_path).filename().string();
     imap::waves::GtkwSave g(dump);
     g.set_view(v.start_time, v.span_time);
-    const std::string t = v.top + ".imap_top.";
+    // the chip (imap_tb.u_chip: its ports include the board interface)
+    const std::string t = v.top + ".imap_tb.u_chip.";
     const std::string cp = t + "u_cp.", arr = t + "u_array.";
     auto sig = [&](const std::string& n, Format f, const std::string& alias = "") {
         g.add_signal(n, f, alias);

@@ -158,8 +158,8 @@ BOOST_AUTO_TEST_CASE(rtl_design_waves_are_identical_and_selected) {
 
     const std::string g = vcdcheck::read_all((d / "R1.gtkw").string());
     BOOST_TEST(g.find("[dumpfile] \"R1.vcd\"") != std::string::npos);
-    BOOST_TEST(g.find("dut.imap_top.u_cp.mcycle[63:0]") != std::string::npos);
-    BOOST_TEST(g.find("dut.imap_top.u_array.g_pe[3].u_pe.regs[0][7:0]") != std::string::npos);
+    BOOST_TEST(g.find("dut.imap_tb.u_chip.u_cp.mcycle[63:0]") != std::string::npos);
+    BOOST_TEST(g.find("dut.imap_tb.u_chip.u_array.g_pe[3].u_pe.regs[0][7:0]") != std::string::npos);
     fs::remove_all(d);
 }
 

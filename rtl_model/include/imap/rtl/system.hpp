@@ -7,11 +7,13 @@
 //
 //   top              the testbench (imap::rtl::detail::Bench)
 //   +- dut           the design, one verilated configuration
-//      +- imap_top
-//         +- u_cp       control processor: fetch, decode, execute sequencer
-//         +- u_array    P x u_pe, the ring links, the mask bus
-//         +- u_board    external memory and transfer data path, video port
-//         +- u_perf     performance counters
+//      +- imap_tb          the testbench top (rtl_model/verif/imap_tb.sv)
+//         +- u_chip        the chip, imap_top (rtl_model/hdl/)
+//         |  +- u_cp       control processor: fetch, decode, execute sequencer
+//         |  |  +- u_mon   retire monitor (verif, bound in): retire record, fault
+//         |  +- u_array    P x u_pe, the ring links, the mask bus
+//         |  +- u_perf     performance counters
+//         +- u_board       board model: external memory and transfer data path, video port
 //
 // SystemC elaborates once per process: call run_rtl or run_lockstep once.
 #pragma once

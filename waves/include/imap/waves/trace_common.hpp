@@ -1,7 +1,6 @@
-// Pieces shared by the instruction-level (IsaTracer) and the per-cycle
-// (CycleTracer) waves: naming, widths, the disassembly cache and the per-PE
-// signals with their .gtkw group. Both tracers declare their signals through
-// these, so their VCDs and views stay alike.
+// Pieces of the instruction-level waves (IsaTracer) kept apart from the
+// tracer itself: naming, widths, the disassembly cache and the per-PE
+// signals with their .gtkw group.
 #pragma once
 
 #include <cstdint>

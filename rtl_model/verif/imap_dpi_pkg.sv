@@ -1,11 +1,13 @@
-// Simulation-only interfaces of the design (not synthesized): the trace port
-// (the CP's retire record and param-block writes), the video line port of
-// the board's camera/display interface and the fault report. Each is a DPI-C
-// import implemented by the SystemC testbench (rtl_model/verif); the trace
-// calls are made only when the testbench has set the `trace` strap. The PE
-// state (registers, flags, memories) is not reported through DPI: the
-// lockstep checker reads it from the design's public state elements at each
-// retire (rtl_model/verif/checker.cpp).
+// The testbench's DPI-C imports (verification only; the design in
+// rtl_model/hdl has none): the trace port (the CP's retire record and
+// param-block writes, reported by the retire monitor imap_cp_monitor.sv
+// bound into the CP), the fault report (same monitor) and the video line
+// port of the board model (imap_board.sv: camera / display). Each is
+// implemented by the SystemC testbench (dpi.cpp); the trace calls are made
+// only when the testbench has set the `trace` strap. The PE state
+// (registers, flags, memories) is not reported through DPI: the lockstep
+// checker reads it from the design's public state elements at each retire
+// (rtl_model/verif/checker.cpp).
 package imap_dpi_pkg;
   // One retired instruction (the CP's retire record): index counts every
   // retired instruction from 0, cyc is the machine cycle at its issue and

@@ -8,10 +8,10 @@
 //          the PEs (xld; the external memory does not change during xld)
 //   xe_wr  write xe_n ext rows [xe_wrow, ..) from the PEs' row read ports (xst)
 // A prefetch at the edge of a write sees the written rows (bypass).
-// The video port is the testbench's camera / display model (DPI, simulation
-// only): vid_open checks the line when vin / vout enters execute and, for
+// The video port is the testbench's camera / display model (DPI): vid_open checks the line when vin / vout enters execute and, for
 // vin, loads the line onto lane 0 of the row bus; vid_put sends the PEs'
-// row to the output line when vout commits. Not synthesized (board model).
+// row to the output line when vout commits. A board model of the testbench
+// (rtl_model/verif/imap_tb.sv instantiates it next to the chip), not synthesized.
 module imap_board
 #(
     parameter int P = 8,
@@ -19,7 +19,6 @@ module imap_board
     parameter int XROWS = 4
 ) (
     input logic clk,
-    input logic trace,
     input logic xe_pf,
     input logic [31:0] xe_prow,
     input logic xe_wr,
@@ -44,9 +43,7 @@ module imap_board
   // byte (pe, a) at a * P + pe (address-major); public: the testbench's backdoor
   logic [7:0] ext[EXT_N*P]  /*verilator public_flat_rw*/;
 
-`ifndef SYNTHESIS
   import imap_dpi_pkg::*;
-`endif
 
   // The external memory is read and written only here (and by the
   // backdoor): blocking writes, so that a prefetch at the edge of a write
@@ -68,7 +65,6 @@ module imap_board
       end
       rbus <= nb;
     end
-`ifndef SYNTHESIS
     if (vid_open) begin
       int st;
       st = imap_rtl_vid_check(int'(vid_out), int'(vid_oport), int'(vid_oy));
@@ -83,7 +79,6 @@ module imap_board
     if (vid_put)
       for (int p = 0; p < P; p++)
         imap_rtl_vid_put(int'(vid_pport), int'(vid_py), int'(vid_px) + p, int'(rrow[p][7:0]));
-`endif
   end
 
 endmodule

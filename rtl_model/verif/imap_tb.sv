@@ -1,0 +1,84 @@
+`include "imap_mutants.svh"
+// The testbench top (the Verilator top module of every verilated
+// configuration): the chip (rtl_model/hdl/imap_top.sv, instance u_chip) and
+// the board model next to it (imap_board.sv, instance u_board: external
+// memory, camera / display). Its ports are the ones the SystemC bench binds
+// (model_impl.hpp): clock, reset, the host port, the straps and done. The
+// retire monitor (imap_cp_monitor.sv) is bound into the chip's CP below; the
+// design tree does not reference this folder.
+module imap_tb
+#(
+    parameter int P = 8,
+    parameter int MEM_BYTES = 1024,
+    parameter int EXT_BYTES = 65536,
+    parameter int NREGS = 16,
+    parameter int MASK_DEPTH = 8,
+    parameter int CALL_DEPTH = 16,
+    parameter int IMEM_WORDS = 65536,
+    parameter int XROWS = 4,
+    parameter int PHASES = 256
+) (
+    input logic clk,
+    input logic rst_n,
+`ifdef IMAP_MUTANTS
+    input logic [7:0] mutant,  // planted bug (mutation check)
+`endif
+    input logic host_we,
+    input logic host_sel,
+    input logic [23:0] host_addr,
+    input logic [63:0] host_data,
+    input logic [31:0] c_alu,
+    input logic [31:0] c_mem,
+    input logic [31:0] c_indirect_extra,
+    input logic [31:0] c_ring_hop,
+    input logic [31:0] c_mask,
+    input logic [31:0] c_status,
+    input logic [31:0] c_cp,
+    input logic [31:0] c_branch_taken,
+    input logic [31:0] c_video_line,
+    input logic [31:0] c_xfer_setup,
+    input logic [31:0] c_ext_bpc,
+    input logic [31:0] c_shift_bits,
+    input logic [31:0] c_minmax_extra,
+    input logic [31:0] cfg_prog_len,
+    input logic [7:0] cfg_pe_regs,
+    input logic [8:0] cfg_mask_depth,
+    input logic [8:0] cfg_call_depth,
+    input logic cfg_indirect,
+    input logic cfg_ext_on,
+    input logic [63:0] cfg_watchdog,
+    input logic cfg_trace,
+    output logic done
+);
+
+  // the chip's board interface
+  logic xe_pf, xe_wr, vid_open, vid_out, vid_put;
+  logic [31:0] xe_prow, xe_wrow, vid_oy, vid_ox, vid_py, vid_px;
+  logic [2:0] xe_n;
+  logic [0:0] vid_oport, vid_pport;
+  logic [1:0] vid_status;
+  logic [P*XROWS*8-1:0] rbus;
+  logic [XROWS*8-1:0] rrow[P];
+
+  imap_top #(
+      .P(P),
+      .MEM_BYTES(MEM_BYTES),
+      .EXT_BYTES(EXT_BYTES),
+      .NREGS(NREGS),
+      .MASK_DEPTH(MASK_DEPTH),
+      .CALL_DEPTH(CALL_DEPTH),
+      .IMEM_WORDS(IMEM_WORDS),
+      .XROWS(XROWS),
+      .PHASES(PHASES)
+  ) u_chip (.*);
+
+  imap_board #(
+      .P(P),
+      .EXT_BYTES(EXT_BYTES),
+      .XROWS(XROWS)
+  ) u_board (.*);
+
+  // the retire record, the param-block writes and the fault report
+  bind imap_cp imap_cp_monitor u_mon (.*);
+
+endmodule
