@@ -83,8 +83,7 @@ BOOST_AUTO_TEST_CASE(quick_suite_passes_with_junit_and_json) {
     const fs::path d = tmpdir();
     const fs::path xml = d / "quick.xml", js = d / "quick.json";
     const Result r = run("regress --suite quick --filter edge- -j 2 " + std::string(kModels) +
-                         "--junit " + xml.string() +
-                         " --json " + js.string());
+                         "--junit " + xml.string() + " --json " + js.string());
     BOOST_TEST_INFO(r.out);
     BOOST_TEST(r.code == 0);
     const nlohmann::json s = nlohmann::json::parse(slurp(js));

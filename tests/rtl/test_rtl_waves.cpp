@@ -73,7 +73,8 @@ BOOST_AUTO_TEST_CASE(vcd_and_fst_of_the_design) {
     const std::string gtkw = slurp(d / "a.gtkw");
     BOOST_CHECK(gtkw.find("[dumpfile] \"a.vcd\"") != std::string::npos);
     BOOST_CHECK(gtkw.find("dut.imap_tb.u_chip.u_cp.mcycle[63:0]") != std::string::npos);
-    BOOST_CHECK(gtkw.find("dut.imap_tb.u_chip.u_array.g_pe[1].u_pe.regs[0][7:0]") != std::string::npos);
+    BOOST_CHECK(gtkw.find("dut.imap_tb.u_chip.u_array.g_pe[1].u_pe.regs[0][7:0]") !=
+                std::string::npos);
     // a window of machine cycles: a smaller file
     const std::string w = (d / "w.vcd").string();
     BOOST_REQUIRE_EQUAL(traced_run(w, {1}, 20, 30), 0);
