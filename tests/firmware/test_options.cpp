@@ -45,6 +45,37 @@ std::string refusal(const g::Params& p, const g::Roi& roi) {
     return "";
 }
 
+// A random ROI of at least 2 x 1 pixels inside a W x H image.
+g::Roi random_roi(std::mt19937& rng, int W, int H) {
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    g::Roi roi;
+    roi.w = uni(2, W);
+    roi.h = uni(1, H);
+    roi.x0 = uni(0, W - roi.w);
+    roi.y0 = uni(0, H - roi.h);
+    return roi;
+}
+
+// A random PE count the firmware accepts: with the census every line of a
+// batch needs its own PEs (no one-line-per-batch mode); joint needs 3 lines
+// per batch with the vote when the ROI is taller.
+int random_pes(std::mt19937& rng, const g::Params& p, const g::Roi& roi, bool census) {
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    const int span = p.mode == g::Mode::Single ? 1 : 2;
+    return census ? uni(std::max({2, roi.w, span * roi.h}), 48)
+                  : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+}
+
+// The test context of a random frame: every A.9 option and the PE count.
+std::string options_context(const g::Params& p, const g::Roi& roi, int P) {
+    std::ostringstream os;
+    os << describe(p, roi.w, roi.h) << " dissim=" << g::to_string(p.dissim)
+       << " agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census << " km=" << p.km
+       << " ad-max=" << p.ad_max << " vote=" << p.vote << " frame=" << g::to_string(p.frame)
+       << " P=" << P;
+    return os.str();
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(ad_max_random_frames) {
@@ -52,18 +83,11 @@ BOOST_AUTO_TEST_CASE(ad_max_random_frames) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     for (int it = 0; it < 40; ++it) {
         const int W = uni(4, 48), Hi = uni(1, 14);
-        g::Roi roi;
-        roi.w = uni(2, W);
-        roi.h = uni(1, Hi);
-        roi.x0 = uni(0, W - roi.w);
-        roi.y0 = uni(0, Hi - roi.h);
+        const g::Roi roi = random_roi(rng, W, Hi);
         const g::Params p = random_option_params(rng, roi.w);
-        // joint needs 3 lines per batch with the vote when the ROI is taller
-        const int P = uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const int P = random_pes(rng, p, roi, false);
         const Frame fr = random_frame(rng, W, Hi, p.D);
-        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
-                           << " ad-max=" << p.ad_max << " vote=" << p.vote
-                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+        BOOST_TEST_CONTEXT(options_context(p, roi, P)) {
             check_frame(p, fr, roi, P);
         }
     }
@@ -184,20 +208,12 @@ BOOST_AUTO_TEST_CASE(census_random_frames) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     for (int it = 0; it < 40; ++it) {
         const int W = uni(4, 44), Hi = uni(1, 12);
-        g::Roi roi;
-        roi.w = uni(2, W);
-        roi.h = uni(1, Hi);
-        roi.x0 = uni(0, W - roi.w);
-        roi.y0 = uni(0, Hi - roi.h);
+        const g::Roi roi = random_roi(rng, W, Hi);
         g::Params p = random_census_params(rng, roi.w);
         if (p.mode != g::Mode::Single && p.kc * 8 > 20000) p.kc = 100;
-        const int span = p.mode == g::Mode::Single ? 1 : 2;
-        const int P = uni(std::max({2, roi.w, span * roi.h}), 48);
+        const int P = random_pes(rng, p, roi, true);
         const Frame fr = random_frame(rng, W, Hi, p.D);
-        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
-                           << " kc=" << p.kc << " census=" << p.census << " km=" << p.km
-                           << " ad-max=" << p.ad_max << " vote=" << p.vote
-                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+        BOOST_TEST_CONTEXT(options_context(p, roi, P)) {
             check_frame(p, fr, roi, P);
         }
     }
@@ -409,25 +425,16 @@ BOOST_AUTO_TEST_CASE(window_random_frames) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     for (int it = 0; it < 40; ++it) {
         const int W = uni(4, 44), Hi = uni(1, 12);
-        g::Roi roi;
-        roi.w = uni(2, W);
-        roi.h = uni(1, Hi);
-        roi.x0 = uni(0, W - roi.w);
-        roi.y0 = uni(0, Hi - roi.h);
+        const g::Roi roi = random_roi(rng, W, Hi);
         const bool census = uni(0, 1) == 0;
         g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
         p.agg_rx = uni(1, 2);
         if (p.kc * 8 > 2000) p.kc = 100;
         while (g::Params(p).km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc > 6500) p.km /= 2;
         if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
-        const int span = p.mode == g::Mode::Single ? 1 : 2;
-        const int P = census ? uni(std::max({2, roi.w, span * roi.h}), 48)
-                             : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const int P = random_pes(rng, p, roi, census);
         const Frame fr = random_frame(rng, W, Hi, p.D);
-        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
-                           << " agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census
-                           << " km=" << p.km << " ad-max=" << p.ad_max << " vote=" << p.vote
-                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+        BOOST_TEST_CONTEXT(options_context(p, roi, P)) {
             check_frame(p, fr, roi, P);
         }
     }
@@ -481,11 +488,7 @@ BOOST_AUTO_TEST_CASE(bt_random_frames) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     for (int it = 0; it < 48; ++it) {
         const int W = uni(4, 44), Hi = uni(1, 12);
-        g::Roi roi;
-        roi.w = uni(2, W);
-        roi.h = uni(1, Hi);
-        roi.x0 = uni(0, W - roi.w);
-        roi.y0 = uni(0, Hi - roi.h);
+        const g::Roi roi = random_roi(rng, W, Hi);
         const bool census = uni(0, 2) == 0;
         g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
         p.dissim = g::Dissim::Bt;
@@ -498,14 +501,9 @@ BOOST_AUTO_TEST_CASE(bt_random_frames) {
             p.km /= 2;
         if ((2 * p.agg_rx + 1) * (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc) > 30000)
             p.kc = 1;
-        const int span = p.mode == g::Mode::Single ? 1 : 2;
-        const int P = census ? uni(std::max({2, roi.w, span * roi.h}), 48)
-                             : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
+        const int P = random_pes(rng, p, roi, census);
         const Frame fr = random_frame(rng, W, Hi, p.D);
-        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
-                           << " bt agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census
-                           << " km=" << p.km << " ad-max=" << p.ad_max << " vote=" << p.vote
-                           << " frame=" << g::to_string(p.frame) << " P=" << P) {
+        BOOST_TEST_CONTEXT(options_context(p, roi, P)) {
             check_frame(p, fr, roi, P);
         }
     }
