@@ -1,5 +1,5 @@
 # Writes OUT, a C++ file with the yosys statistics (JSON) of the PE and the
-# CP, compiled into imap_rtl (rtl_model/src/synth.cpp reads them).
+# CP, compiled into imap_rtl_catalog (cosim/src/synth.cpp reads them).
 foreach(f pe pe.mem cp cp.mem)
   file(READ ${DIR}/${f}.json j)
   string(MAKE_C_IDENTIFIER ${f} id)

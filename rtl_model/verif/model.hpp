@@ -105,6 +105,7 @@ const char* build_source_dir();
 const char* build_binary_dir();
 const char* build_extra_configs();
 const char* build_trace_configs();
+bool build_fst_all();  // IMAP_RTL_FST_ALL: every configuration FST-traced
 
 // The sizes fixed in the HDL of every configuration (imap_top parameters).
 inline constexpr int kHdlRegs = 16;

@@ -11,7 +11,8 @@
 using namespace rtltest;
 
 namespace {
-std::string refusal(const isa::MachineConfig& cfg, bool waves = false) {
+// waves: 0 none, 1 VCD, 2 FST (rtl::waves_format)
+std::string refusal(const isa::MachineConfig& cfg, int waves = 0) {
     try {
         rtl::check_runnable(cfg, waves);
     } catch (const isa::ConfigError& e) {
@@ -26,9 +27,15 @@ BOOST_AUTO_TEST_CASE(built_configurations_run) {
     cfg.pes = 8;
     BOOST_CHECK(rtl::has_configuration(cfg));
     BOOST_CHECK_EQUAL(refusal(cfg), "");
-    BOOST_CHECK_EQUAL(refusal(cfg, true), "");  // the traced variant
+    BOOST_CHECK_EQUAL(refusal(cfg, 1), "");  // the VCD variant (IMAP_RTL_TRACE_CONFIGS)
+    BOOST_CHECK_EQUAL(refusal(cfg, 2), "");  // FST
+    BOOST_CHECK_EQUAL(rtl::waves_format(""), 0);
+    BOOST_CHECK_EQUAL(rtl::waves_format("w.vcd"), 1);
+    BOOST_CHECK_EQUAL(rtl::waves_format("d/w.fst"), 2);
     const auto list = rtl::built_configurations();
-    BOOST_CHECK(std::find(list.begin(), list.end(), "p8_m1024_x65536") != list.end());
+    BOOST_CHECK(std::find(list.begin(), list.end(), "p8_m1024_x65536 (VCD waves)") != list.end());
+    BOOST_CHECK(std::find(list.begin(), list.end(), "p8_m1024_x65536 (FST waves)") != list.end() ||
+                std::find(list.begin(), list.end(), "p8_m1024_x65536") != list.end());
 }
 
 BOOST_AUTO_TEST_CASE(unbuilt_configuration_says_what_to_run) {
@@ -50,8 +57,30 @@ BOOST_AUTO_TEST_CASE(unbuilt_configuration_says_what_to_run) {
     cfg.pes = 77;
     BOOST_CHECK_THROW(rtl::run_rtl(cfg, isa::assemble_string("halt\n"), {}, {}, {}, 0, 0, nullptr),
                       isa::ConfigError);
-    cfg.pes = 16;  // fast, but no traced variant
-    BOOST_CHECK(refusal(cfg, true).find("-DIMAP_RTL_TRACE_CONFIGS=") != std::string::npos);
+    // 16 PEs: no VCD variant; FST waves exactly when its model has FST
+    // tracing in (IMAP_RTL_FST_ALL, the default), else the command
+    cfg.pes = 16;
+    BOOST_CHECK(rtl::has_configuration(cfg));
+    BOOST_CHECK_EQUAL(refusal(cfg), "");
+    const std::string vcd = refusal(cfg, 1);
+    BOOST_TEST_MESSAGE(vcd);
+    BOOST_CHECK(vcd.find("no VCD-traced configuration pes=16") != std::string::npos);
+    BOOST_CHECK(vcd.find("-DIMAP_RTL_TRACE_CONFIGS=") != std::string::npos);
+    BOOST_CHECK(vcd.find("16:1024:65536\"") != std::string::npos);
+    const auto list = rtl::built_configurations();
+    const bool fst16 =
+        std::find(list.begin(), list.end(), "p16_m1024_x65536 (FST waves)") != list.end();
+    const std::string fst = refusal(cfg, 2);
+    BOOST_CHECK_EQUAL(fst.empty(), fst16);
+    if (!fst16) BOOST_CHECK(fst.find("-DIMAP_RTL_TRACE_CONFIGS=") != std::string::npos);
+    // an unbuilt configuration asked with FST waves: one command builds it
+    // with them
+    cfg.pes = 77;
+    const std::string m77 = refusal(cfg, 2);
+    BOOST_CHECK(m77.find("no configuration pes=77") != std::string::npos);
+    BOOST_CHECK(m77.find("77:1024:65536\"") != std::string::npos);
+    BOOST_CHECK(m77.find(fst16 ? "-DIMAP_RTL_EXTRA_CONFIGS=" : "-DIMAP_RTL_TRACE_CONFIGS=") !=
+                std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(run_time_parameters_beyond_the_hdl) {

@@ -6,7 +6,10 @@
 // With the checker's full compares every 8 instructions, a fault in r6 (which
 // the following instructions do not name) is caught by the next full
 // compare, and the report says so (built with
-// RTL_TEST_PERIODIC=1: SystemC elaborates once per process).
+// RTL_TEST_PERIODIC=1: SystemC elaborates once per process). Built with
+// RTL_TEST_FST=1, the same on 16 PEs with the default FST divergence waves:
+// the configuration's own model (FST tracing compiled in, off) is the one
+// that replays the window.
 #define BOOST_TEST_MODULE rtl_lockstep_inject
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
@@ -21,10 +24,13 @@ namespace fs = std::filesystem;
 #ifndef RTL_TEST_PERIODIC
 #define RTL_TEST_PERIODIC 0
 #endif
+#ifndef RTL_TEST_FST
+#define RTL_TEST_FST 0
+#endif
 
 #if !RTL_TEST_PERIODIC
 BOOST_AUTO_TEST_CASE(injected_fault_is_caught_with_waves) {
-    const isa::MachineConfig cfg = rtl_config(8);
+    const isa::MachineConfig cfg = rtl_config(RTL_TEST_FST ? 16 : 8);
     const isa::Program prog = isa::assemble_string(kProgram, "equiv.s");
     const auto left = image(10, 3, 1), right = image(10, 3, 90);
     // The state of r5 of PE 3 right after instruction 21 (bare machine).
@@ -47,7 +53,9 @@ BOOST_AUTO_TEST_CASE(injected_fault_is_caught_with_waves) {
     BOOST_CHECK_THROW(rtl::parse_fault_injection("x:3:r5:1"), isa::ConfigError);
     const fs::path dir = fs::temp_directory_path() / ("rtl-inject-" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    lc.divergence_waves = (dir / "div.vcd").string();
+    if (RTL_TEST_FST)
+        BOOST_CHECK_EQUAL(fs::path(lc.divergence_waves).extension(), ".fst");  // the default
+    lc.divergence_waves = (dir / (RTL_TEST_FST ? "div.fst" : "div.vcd")).string();
     lc.waves_cycles = 30;
     rtl::OutputImages out;
     const rtl::LockstepResult r =
@@ -68,13 +76,26 @@ BOOST_AUTO_TEST_CASE(injected_fault_is_caught_with_waves) {
     BOOST_REQUIRE(fs::exists(lc.divergence_waves));
     BOOST_CHECK(fs::exists(dir / "div.gtkw"));
     BOOST_CHECK(!fs::exists(lc.divergence_waves + ".part"));
-    std::ifstream in(lc.divergence_waves);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string vcd = ss.str();
-    BOOST_CHECK(vcd.find("$scope module u_cp $end") != std::string::npos);
-    BOOST_CHECK(vcd.find(" mcycle ") != std::string::npos);
-    BOOST_CHECK(vcd.find("$scope module g_pe[3] $end") != std::string::npos);
+    auto read = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    };
+    const std::string waves = read(lc.divergence_waves);
+    if (RTL_TEST_FST) {
+        // an FST file: its first block is the header (block type 0), and
+        // the view names the design's signals
+        BOOST_REQUIRE_GT(waves.size(), 100u);
+        BOOST_CHECK_EQUAL(int(waves[0]), 0);
+        const std::string view = read(dir / "div.gtkw");
+        BOOST_CHECK(view.find("u_cp") != std::string::npos);
+        BOOST_CHECK(view.find("g_pe[3]") != std::string::npos);
+    } else {
+        BOOST_CHECK(waves.find("$scope module u_cp $end") != std::string::npos);
+        BOOST_CHECK(waves.find(" mcycle ") != std::string::npos);
+        BOOST_CHECK(waves.find("$scope module g_pe[3] $end") != std::string::npos);
+    }
     fs::remove_all(dir);
 }
 #else

@@ -135,7 +135,7 @@ void add_rtl_flags(CLI::App* app, RtlFlags& f) {
         ->group(grp);
     app->add_option("--lockstep-waves", f.lockstep_waves,
                     "--model lockstep: waves (.vcd / .fst) of the RTL before a divergence, '' = "
-                    "none [default: rtl_divergence.vcd]")
+                    "none [default: rtl_divergence.fst]")
         ->group(grp);
 }
 
@@ -344,8 +344,8 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                     lc.rtl.waves.validate(cfg);
                 }
 #endif
-                rtl::check_runnable(cfg, !lc.rtl.waves.path.empty(), !lc.rtl.mutant.empty(),
-                                    prog.code.size(), prog.phases.size());
+                rtl::check_runnable(cfg, rtl::waves_format(lc.rtl.waves.path),
+                                    !lc.rtl.mutant.empty(), prog.code.size(), prog.phases.size());
             } catch (const isa::ConfigError& e) {
                 throw UserError(std::string("--model ") + model + ": " + e.what());
             }

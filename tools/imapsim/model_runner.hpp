@@ -35,7 +35,7 @@ imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
 struct RtlFlags {
     std::string inject_fault;  // INSTR:PE:REG:MASK
     std::string mutant;        // planted bug (mutation-check configuration)
-    std::string lockstep_waves = "rtl_divergence.vcd";  // waves before a divergence, "" none
+    std::string lockstep_waves = "rtl_divergence.fst";  // waves before a divergence, "" none
 };
 void add_rtl_flags(CLI::App* app, RtlFlags& f);
 void set_rtl_flags(const RtlFlags& f);

@@ -27,7 +27,7 @@ struct LockstepConfig {
     // Waves of the last `waves_cycles` machine cycles before a divergence
     // (.vcd or .fst; "" = none). Written when the configuration has a traced
     // variant; otherwise the report says which option builds one.
-    std::string divergence_waves = "rtl_divergence.vcd";
+    std::string divergence_waves = "rtl_divergence.fst";
     uint64_t waves_cycles = 200;
     // The checker's full compares of all PE registers and flags / the whole
     // local memory every this many instructions (0: automatic, about 256

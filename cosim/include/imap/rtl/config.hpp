@@ -47,8 +47,9 @@ const std::vector<Mutant>& mutants();
 // Throws isa::ConfigError for an unknown name (listing the known ones).
 uint32_t mutant_id(const std::string& name);
 
-// Waves of the design's own signals (Verilator tracing): needs a traced
-// variant of the configuration (IMAP_RTL_TRACE_CONFIGS).
+// Waves of the design's own signals (Verilator tracing): needs a variant of
+// the configuration traced in the format (FST: every configuration of an
+// IMAP_RTL_FST_ALL build; VCD: IMAP_RTL_TRACE_CONFIGS).
 struct RtlWaves {
     std::string path;  // .vcd or .fst (by the extension); empty = no waves
     // machine cycles [t0, t1] (inclusive); the whole run by default
@@ -88,10 +89,14 @@ bool has_configuration(const isa::MachineConfig& cfg);
 // unbuilt configuration (the message gives the exact command that builds
 // it), or a run-time parameter beyond what the HDL of every configuration
 // holds (registers, mask and return stacks, the transfer path's rows per
-// cycle, program size, phases). `needs_waves`: a traced variant is needed.
-void check_runnable(const isa::MachineConfig& cfg, bool needs_waves = false,
-                    bool needs_mutants = false, size_t program_words = 0, size_t phases = 0);
-// The command that adds the configuration of cfg to a build.
-std::string build_command(const isa::MachineConfig& cfg, bool traced = false);
+// cycle, program size, phases). `waves`: the wave format the run writes
+// (waves_format: 0 none, 1 VCD, 2 FST), which needs a variant traced in it.
+void check_runnable(const isa::MachineConfig& cfg, int waves = 0, bool needs_mutants = false,
+                    size_t program_words = 0, size_t phases = 0);
+// The wave format of a waves path by its extension: 0 for "" (no waves), 2
+// for .fst, 1 (VCD) otherwise.
+int waves_format(const std::string& path);
+// The command that adds the configuration of cfg (traced in `waves`) to a build.
+std::string build_command(const isa::MachineConfig& cfg, int waves = 0);
 
 }  // namespace imap::rtl

@@ -26,16 +26,21 @@ void claim_process(const char* who) {
 }
 
 const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rcfg) {
-    int trace = 0;
-    if (!rcfg.waves.path.empty()) {
-        const std::string& p = rcfg.waves.path;
-        trace = p.size() > 4 && p.compare(p.size() - 4, 4, ".fst") == 0 ? 2 : 1;
-    }
+    const int trace = waves_format(rcfg.waves.path);
     const bool mut = !rcfg.mutant.empty();
+    // without waves: the untraced variant, else a traced one (its tracing
+    // stays off: IMAP_RTL_FST_ALL builds every configuration traced)
+    const ConfigInfo *exact = nullptr, *traced = nullptr;
     for (const ConfigInfo& c : built_configs())
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
-            c.trace == trace && (c.mutants != 0) == mut)
-            return c;
+            (c.mutants != 0) == mut) {
+            if (c.trace == trace)
+                exact = &c;
+            else if (trace == 0)
+                traced = &c;
+        }
+    if (exact) return *exact;
+    if (traced) return *traced;
     throw isa::ConfigError(trace == 2   ? "RTL: FST waves need the FST variant of the configuration"
                            : trace == 1 ? "RTL: VCD waves need the VCD variant of the configuration"
                                         : "RTL: configuration not built");
@@ -192,7 +197,7 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
     using namespace detail;
     cfg.validate();
     rcfg.validate(cfg);
-    check_runnable(cfg, !rcfg.waves.path.empty(), !rcfg.mutant.empty(), prog.code.size(),
+    check_runnable(cfg, waves_format(rcfg.waves.path), !rcfg.mutant.empty(), prog.code.size(),
                    prog.phases.size());
     const ConfigInfo& ci = pick_config(cfg, rcfg);
     claim_process("run_rtl");

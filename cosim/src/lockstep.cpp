@@ -43,9 +43,9 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     check_runnable(cfg, false, !lcfg.rtl.mutant.empty(), prog.code.size(), prog.phases.size());
     const ConfigInfo& ci = pick_config(cfg, lcfg.rtl);
     const std::string& wpath = lcfg.divergence_waves;
-    const bool fst = wpath.size() > 4 && wpath.compare(wpath.size() - 4, 4, ".fst") == 0;
+    const int wformat = waves_format(wpath);
     const ConfigInfo* replay =
-        wpath.empty() || !lcfg.rtl.mutant.empty() ? nullptr : traced_config(cfg, fst ? 2 : 1);
+        wformat == 0 || !lcfg.rtl.mutant.empty() ? nullptr : traced_config(cfg, wformat);
     claim_process("run_lockstep");
 
     tlm::TlmConfig tc;
@@ -90,9 +90,9 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
                 // a traced variant would replay the design without the bug
                 chk.div.waves = "no waves: the mutation-check model has no traced variant";
             else
-                chk.div.waves = "no waves: configuration " + std::string(ci.name) +
-                                " has no traced variant (build one: " + build_command(cfg, true) +
-                                ")";
+                chk.div.waves = std::string("no waves: configuration ") + ci.name + " has no " +
+                                (wformat == 2 ? "FST" : "VCD") +
+                                "-traced variant (build one: " + build_command(cfg, wformat) + ")";
             return;
         }
         j.waves_path = wpath;

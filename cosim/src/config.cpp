@@ -194,10 +194,11 @@ const detail::ConfigInfo* find(const isa::MachineConfig& cfg, int trace, bool mu
     return nullptr;
 }
 
-std::string built_list(bool traced) {
+// The configurations (any variant: 0; traced in that format: 1 VCD, 2 FST).
+std::string built_list(int waves) {
     std::set<std::string> names;
     for (const detail::ConfigInfo& c : detail::built_configs())
-        if (!c.mutants && (traced ? c.trace != 0 : c.trace == 0))
+        if (!c.mutants && (waves == 0 || c.trace == waves))
             names.insert(std::to_string(c.pes) + ":" + std::to_string(c.mem_bytes) + ":" +
                          std::to_string(c.ext_bytes));
     std::string s;
@@ -207,20 +208,29 @@ std::string built_list(bool traced) {
 }  // namespace
 
 bool has_configuration(const isa::MachineConfig& cfg) {
-    return find(cfg, 0, false) != nullptr;
+    // any variant runs untraced (IMAP_RTL_FST_ALL builds them all traced)
+    return find(cfg, 0, false) || find(cfg, 1, false) || find(cfg, 2, false);
 }
 
-std::string build_command(const isa::MachineConfig& cfg, bool traced) {
+int waves_format(const std::string& path) {
+    if (path.empty()) return 0;
+    return path.size() > 4 && path.compare(path.size() - 4, 4, ".fst") == 0 ? 2 : 1;
+}
+
+std::string build_command(const isa::MachineConfig& cfg, int waves) {
+    // FST: every configuration of an IMAP_RTL_FST_ALL build has it, so the
+    // configuration is added like any other; VCD variants are listed apart.
+    const bool trace_list = waves == 1 || (waves == 2 && !detail::build_fst_all());
     const std::string current =
-        traced ? detail::build_trace_configs() : detail::build_extra_configs();
+        trace_list ? detail::build_trace_configs() : detail::build_extra_configs();
     const std::string list = current.empty() ? spec_of(cfg) : current + ";" + spec_of(cfg);
     const std::string bin = detail::build_binary_dir();
     return std::string("cmake -S ") + detail::build_source_dir() + " -B " + bin +
-           (traced ? " -DIMAP_RTL_TRACE_CONFIGS=\"" : " -DIMAP_RTL_EXTRA_CONFIGS=\"") + list +
+           (trace_list ? " -DIMAP_RTL_TRACE_CONFIGS=\"" : " -DIMAP_RTL_EXTRA_CONFIGS=\"") + list +
            "\" && cmake --build " + bin + " --target imapsim";
 }
 
-void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_mutants,
+void check_runnable(const isa::MachineConfig& cfg, int waves, bool needs_mutants,
                     size_t program_words, size_t phases) {
     using namespace detail;
     const std::string what = "pes=" + std::to_string(cfg.pes) +
@@ -238,15 +248,16 @@ void check_runnable(const isa::MachineConfig& cfg, bool needs_waves, bool needs_
                 "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
                 "ext_bytes=65536 only (asked: " +
                 what + ")");
-    } else if (!needs_waves && !find(cfg, 0, false)) {
+    } else if (!has_configuration(cfg)) {
         throw isa::ConfigError("RTL: no configuration " + what +
-                               " in this build (built: " + built_list(false) +
+                               " in this build (built: " + built_list(0) +
                                "); PE count and memory sizes are HDL parameters: build it with: " +
-                               build_command(cfg, false));
-    } else if (needs_waves && !find(cfg, 1, false) && !find(cfg, 2, false)) {
-        throw isa::ConfigError("RTL waves: no traced configuration " + what +
-                               " in this build (traced: " + built_list(true) +
-                               "); build it with: " + build_command(cfg, true));
+                               build_command(cfg, waves));
+    } else if (waves != 0 && !find(cfg, waves, false)) {
+        const char* fmt = waves == 2 ? "FST" : "VCD";
+        throw isa::ConfigError(std::string("RTL waves: no ") + fmt + "-traced configuration " +
+                               what + " in this build (" + fmt + ": " + built_list(waves) +
+                               "); build it with: " + build_command(cfg, waves));
     }
     if (cfg.pe_regs > kHdlRegs)
         throw isa::ConfigError("RTL: pe_regs = " + std::to_string(cfg.pe_regs) +
