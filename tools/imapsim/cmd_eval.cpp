@@ -16,6 +16,7 @@
 #include "imap/isa/config.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/matchers.hpp"
+#include "imap/vision/perturb.hpp"
 #include "imap/vision/scene.hpp"
 #include "imap/vision/score.hpp"
 #include "imap/vision/synth.hpp"
@@ -29,8 +30,8 @@ using nlohmann::json;
 
 namespace {
 struct EvalOptions {
-    std::string scene, all, matcher, json, plot, param_sets;
-    bool tradeoff = false;
+    std::string scene, all, matcher, json, plot, param_sets, perturb;
+    bool tradeoff = false, robustness = false;
     double delta = 1.0;
     double gt_scale = 0;
     AlgoFlags algo;
@@ -252,6 +253,7 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
                 j["a9_local_bytes_estimate"] = r.model.est.local_bytes;
                 j["modeled_ms"] = r.model.ok() ? json(r.model.total_ms()) : json(nullptr);
             }
+            if (!o.perturb.empty()) j["perturb"] = o.perturb;
             arr.push_back(j);
         }
         v::write_text_atomic(o.json, arr.dump(2) + "\n");
@@ -361,6 +363,77 @@ int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
                        {"delta", o.delta},
                        {"scenes", per}});
     }
+    if (!o.perturb.empty())
+        for (auto& j : arr) j["perturb"] = o.perturb;
+    if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
+    return static_cast<int>(kExitOk);
+}
+
+// The conditions of eval --robustness (docs/golden.md, "Robustness").
+const std::vector<std::pair<std::string, std::string>>& robustness_conditions() {
+    static const std::vector<std::pair<std::string, std::string>> c = {
+        {"as recorded", ""},
+        {"right x0.8 + 10", "gain=0.8,offset=10"},
+        {"right x1.2 - 20", "gain=1.2,offset=-20"},
+        {"noise 3", "noise=3"},
+        {"noise 6", "noise=6"},
+        {"right x0.9 + 5, noise 2", "gain=0.9,offset=5,noise=2"},
+    };
+    return c;
+}
+
+// imapsim eval --robustness: every matcher on every scene under each
+// condition (seed 1); one line per condition with each matcher's mean nonocc.
+int run_robustness(const EvalOptions& o, const std::vector<v::Scene>& scenes,
+                   const std::vector<std::string>& matchers, const std::vector<std::string>& labels,
+                   const g::Params& p, bool explicit_D) {
+    char delta_txt[32];
+    std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
+    std::printf("mean %s %% (nonocc) over %zu scene(s) under each perturbation (--perturb SPEC)\n",
+                delta_txt, scenes.size());
+    std::printf("%-24s", "condition");
+    for (const auto& l : labels) std::printf(" %14s", l.c_str());
+    std::printf("  perturb\n");
+    json arr = json::array();
+    for (const auto& [cond, spec] : robustness_conditions()) {
+        const v::Perturbation pert = spec.empty() ? v::Perturbation{} : v::parse_perturbation(spec);
+        std::vector<double> mean(matchers.size(), 0.0);
+        json per = json::object();
+        for (const v::Scene& orig : scenes) {
+            v::Scene sc = orig;
+            sc.left = orig.left.clone();
+            sc.right = orig.right.clone();
+            v::perturb_pair(sc.left, sc.right, pert);
+            g::Params q = p;
+            if (!explicit_D) q.D = sc.ndisp;
+            q.frame = g::Frame::Left;
+            for (size_t i = 0; i < matchers.size(); ++i) {
+                double secs = 0;
+                cv::Mat disp;
+                try {
+                    disp = v::run_matcher(matchers[i], sc, q, &secs);
+                } catch (const g::ParamError& e) {
+                    throw UserError("scene '" + sc.name + "': " + e.what());
+                }
+                const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
+                mean[i] += b.nonocc / static_cast<double>(scenes.size());
+                per[labels[i]][sc.name] = b.nonocc;
+            }
+        }
+        std::printf("%-24s", cond.c_str());
+        json means = json::object();
+        for (size_t i = 0; i < matchers.size(); ++i) {
+            std::printf(" %14.2f", mean[i]);
+            means[labels[i]] = mean[i];
+        }
+        std::printf("  %s\n", spec.empty() ? "-" : spec.c_str());
+        std::fflush(stdout);
+        arr.push_back({{"condition", cond},
+                       {"perturb", spec.empty() ? json(nullptr) : json(v::to_string(pert))},
+                       {"nonocc", means},
+                       {"scenes", per},
+                       {"delta", o.delta}});
+    }
     if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
     return static_cast<int>(kExitOk);
 }
@@ -396,6 +469,17 @@ Subcommand register_eval(CLI::App& app) {
                     "score the golden with every parameter set of this file (one line of "
                     "algorithm flags each, e.g. '--preset quality --kc 3'); the scenes are "
                     "loaded once (tuning sweeps: scripts/tune-quality.sh)");
+    sub->add_option("--perturb", o->perturb,
+                    "perturb the images before every matcher: key=value[,key=value...] with "
+                    "gain (0 < g <= 16, default 1) and offset (-255..255, default 0) on 'image' "
+                    "(left|right|both, default right), Gaussian noise of standard deviation "
+                    "noise (0..64, default 0) on 'noise-image' (default both) and seed (default "
+                    "1), e.g. gain=0.8,offset=10 or noise=3,seed=2; integer arithmetic, the same "
+                    "bytes on every CPU (docs/scoring.md)");
+    sub->add_flag("--robustness", o->robustness,
+                  "score the matchers under the standard perturbations (as recorded, right "
+                  "x0.8+10, right x1.2-20, noise 3, noise 6, right x0.9+5 with noise 2; seed 1) "
+                  "and print one line per condition with each matcher's mean nonocc");
     add_algo_flags(sub, o->algo);
     sub->footer(
         "--D defaults to the scene's ndisp (scenes.json). Scenes are scored over the whole "
@@ -410,6 +494,23 @@ Subcommand register_eval(CLI::App& app) {
                 throw UserError("invalid value for --delta: expected a number >= 0");
             if (sub->count("--gt-scale") > 0 && !(std::isfinite(o->gt_scale) && o->gt_scale > 0))
                 throw UserError("invalid value for --gt-scale: expected a number > 0");
+            v::Perturbation pert;
+            if (sub->count("--perturb") > 0) {
+                try {
+                    pert = v::parse_perturbation(o->perturb);
+                } catch (const std::invalid_argument& e) {
+                    throw UserError("invalid value for --perturb: " + std::string(e.what()));
+                }
+            }
+            const bool perturbed = sub->count("--perturb") > 0;
+            if (o->robustness) {
+                if (perturbed)
+                    throw UserError(
+                        "--robustness runs its own list of perturbations: drop "
+                        "--perturb");
+                if (o->tradeoff || !o->param_sets.empty())
+                    throw UserError("give one of --robustness, --tradeoff or --param-sets");
+            }
             g::Roi roi;
             bool has_roi = false;
             const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
@@ -469,7 +570,23 @@ Subcommand register_eval(CLI::App& app) {
             std::vector<v::Scene> scenes;
             for (const auto& d : dirs)
                 scenes.push_back(v::load_scene(d, o->gt_scale, explicit_D ? p.D : 0));
+            // The golden row names the preset it started from (golden:quality).
+            auto label = [&](const std::string& name) {
+                return name == "golden" && !o->algo.preset.empty() ? "golden:" + o->algo.preset
+                                                                   : name;
+            };
+            // The same perturbed pair goes to every matcher.
+            if (perturbed) {
+                for (auto& sc : scenes) v::perturb_pair(sc.left, sc.right, pert);
+                o->perturb = v::to_string(pert);
+                std::printf("perturbation: %s\n", o->perturb.c_str());
+            }
 
+            if (o->robustness) {
+                std::vector<std::string> labels;
+                for (const auto& name : matchers) labels.push_back(label(name));
+                return run_robustness(*o, scenes, matchers, labels, p, explicit_D);
+            }
             if (o->tradeoff) return run_tradeoff(*o, scenes, explicit_D ? p.D : 0);
             if (!sets.empty()) return run_param_sets(*o, sets, scenes);
 
@@ -478,11 +595,6 @@ Subcommand register_eval(CLI::App& app) {
                 wscene = std::max(wscene, static_cast<int>(sc.name.size()));
             char delta_txt[32];
             std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o->delta);
-            // The golden row names the preset it started from (golden:quality).
-            auto label = [&](const std::string& name) {
-                return name == "golden" && !o->algo.preset.empty() ? "golden:" + o->algo.preset
-                                                                   : name;
-            };
             std::printf("%-*s  %-14s %6s %7s %7s %7s %10s\n", wscene, "scene", "matcher", "D",
                         (std::string(delta_txt) + " nonocc").c_str(), "all", "disc", "time ms");
             const char* fmt = "%-*s  %-14s %6d %*.2f %7.2f %7.2f %10.1f\n";
@@ -537,6 +649,8 @@ Subcommand register_eval(CLI::App& app) {
                                    {"ms", r.ms},
                                    {"delta", o->delta},
                                    {"params", r.params}});
+                if (perturbed)
+                    for (auto& j : arr) j["perturb"] = o->perturb;
                 v::write_text_atomic(o->json, arr.dump(2) + "\n");
             }
             return static_cast<int>(kExitOk);
