@@ -14,6 +14,7 @@
 #include "imap/golden/stereo.hpp"
 #include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
+#include "imap/vision/perturb.hpp"
 #include "imap/vision/synth.hpp"
 
 namespace fs = std::filesystem;
@@ -281,6 +282,103 @@ BOOST_FIXTURE_TEST_CASE(eval_param_sets, Fixture) {
     const Result c = run(ev + "--param-sets " + p("sets.txt") + " --km 2");
     BOOST_TEST(c.code == 2);
     BOOST_TEST(c.out.find("drop --km") != std::string::npos);
+}
+
+BOOST_FIXTURE_TEST_CASE(eval_perturb, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const std::string spec = "gain=0.8,offset=10,noise=3,seed=4";
+    const Result r = run(ev + "--matcher all --perturb " + spec + " --json " + p("p.json"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("perturbation: gain=0.8,offset=10,image=right,noise=3,"
+                          "noise-image=both,seed=4") == 0);
+    const auto rows = read_json(p("p.json"));
+    BOOST_REQUIRE(rows.size() == 3u);  // golden and both OpenCV matchers, all perturbed
+    for (const auto& row : rows)
+        BOOST_TEST(row.at("perturb").get<std::string>().find("seed=4") != std::string::npos);
+
+    // The same scores as an unperturbed eval of a folder holding the pair
+    // perturbed by the library: the perturbation reaches the matchers.
+    fs::copy(p("scene"), p("pert"));
+    cv::Mat L = imap::vision::load_grey8(p("pert/left.png"), "left");
+    cv::Mat R = imap::vision::load_grey8(p("pert/right.png"), "right");
+    imap::vision::perturb_pair(L, R, imap::vision::parse_perturbation(spec));
+    cv::imwrite(p("pert/left.png"), L);
+    cv::imwrite(p("pert/right.png"), R);
+    const Result e = run("eval --scene " + p("pert") + " --gt-scale 1 --D 25 --matcher golden " +
+                         "--json " + p("e.json"));
+    BOOST_REQUIRE(e.code == 0);
+    BOOST_TEST(read_json(p("e.json")).at(0).at("nonocc") == rows.at(0).at("nonocc"));
+
+    // The identity perturbation scores exactly as no perturbation; a change
+    // of the gain changes the golden's score on this scene.
+    BOOST_REQUIRE(run(ev + "--matcher golden --json " + p("a.json")).code == 0);
+    BOOST_REQUIRE(
+        run(ev + "--matcher golden --perturb gain=1,image=both,seed=9 --json " + p("b.json"))
+            .code == 0);
+    BOOST_REQUIRE(
+        run(ev + "--matcher golden --perturb gain=0.5,offset=-30 --json " + p("c.json")).code == 0);
+    const double plain = read_json(p("a.json")).at(0).at("nonocc");
+    BOOST_TEST(read_json(p("b.json")).at(0).at("nonocc").get<double>() == plain);
+    BOOST_TEST(read_json(p("c.json")).at(0).at("nonocc").get<double>() != plain);
+}
+
+BOOST_FIXTURE_TEST_CASE(eval_perturb_bad_specs, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev =
+        "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --json " + p("x.json") + " ";
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"gain=0", "'gain=0': expected a number > 0 and <= 16"},
+        {"gain=-0.5", "'gain=-0.5': expected a number > 0"},
+        {"gain=inf", "'gain=inf'"},
+        {"noise=-1", "'noise=-1': expected a standard deviation in 0..64"},
+        {"offset=999", "'offset=999': expected a number in -255..255"},
+        {"seed=x", "'seed=x': expected an integer"},
+        {"image=top", "'image=top': expected left, right or both"},
+        {"blur=1", "unknown key 'blur'"},
+        {"gain0.8", "'gain0.8': expected key=value"},
+        {"noise=1,noise=2", "'noise' given twice"},
+    };
+    for (const auto& [spec, needle] : bad) {
+        const Result r = run(ev + "--perturb " + spec);
+        BOOST_TEST_CONTEXT("spec " << spec << "\noutput: " << r.out) {
+            BOOST_TEST(r.code == 2);
+            BOOST_TEST(r.out.find("imapsim: error: invalid value for --perturb: " + needle) !=
+                       std::string::npos);
+            BOOST_TEST(r.out.find("bad>1") == std::string::npos);  // refused before any work
+            BOOST_TEST(!fs::exists(p("x.json")));
+        }
+    }
+}
+
+BOOST_FIXTURE_TEST_CASE(eval_robustness, Fixture) {
+    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --matcher golden ";
+    const Result r = run(ev + "--preset quality --robustness --json " + p("r.json"));
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const auto rows = read_json(p("r.json"));
+    BOOST_REQUIRE(rows.size() == 6u);
+    BOOST_TEST(r.out.find("golden:quality") != std::string::npos);
+    // each condition scores as eval --perturb with its SPEC
+    for (const auto& row : rows) {
+        std::string extra;
+        if (!row.at("perturb").is_null())
+            extra = "--perturb " + row.at("perturb").get<std::string>();
+        BOOST_TEST_CONTEXT(row.at("condition")) {
+            const Result e = run(ev + "--preset quality " + extra + " --json " + p("e.json"));
+            BOOST_REQUIRE(e.code == 0);
+            BOOST_TEST(read_json(p("e.json")).at(0).at("nonocc") ==
+                       row.at("nonocc").at("golden:quality"));
+        }
+    }
+    const Result a = run(ev + "--robustness --perturb noise=2");
+    BOOST_TEST(a.code == 2);
+    BOOST_TEST(a.out.find("drop --perturb") != std::string::npos);
+    const Result b = run(ev.substr(0, ev.find("--matcher")) + "--robustness --tradeoff");
+    BOOST_TEST(b.code == 2);
+    BOOST_TEST(b.out.find("--robustness") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(main_job_without_arguments) {
