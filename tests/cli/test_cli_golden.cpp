@@ -329,23 +329,22 @@ BOOST_FIXTURE_TEST_CASE(eval_perturb_bad_specs, Fixture) {
     const std::string ev =
         "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --json " + p("x.json") + " ";
     const std::vector<std::pair<std::string, std::string>> bad = {
-        {"gain=0", "'gain=0': expected a number > 0 and <= 16"},
-        {"gain=-0.5", "'gain=-0.5': expected a number > 0"},
-        {"gain=inf", "'gain=inf'"},
-        {"noise=-1", "'noise=-1': expected a standard deviation in 0..64"},
-        {"offset=999", "'offset=999': expected a number in -255..255"},
-        {"seed=x", "'seed=x': expected an integer"},
-        {"image=top", "'image=top': expected left, right or both"},
-        {"blur=1", "unknown key 'blur'"},
-        {"gain0.8", "'gain0.8': expected key=value"},
-        {"noise=1,noise=2", "'noise' given twice"},
+        {"gain=0", "'gain=0' for --perturb: expected a number > 0 and <= 16"},
+        {"gain=-0.5", "'gain=-0.5' for --perturb: expected a number > 0"},
+        {"gain=inf", "'gain=inf' for --perturb: expected a number > 0"},
+        {"noise=-1", "'noise=-1' for --perturb: expected a standard deviation in 0..64"},
+        {"offset=999", "'offset=999' for --perturb: expected a number in -255..255"},
+        {"seed=x", "'seed=x' for --perturb: expected an integer"},
+        {"image=top", "'image=top' for --perturb: expected left, right or both"},
+        {"blur=1", "'blur=1' for --perturb: unknown key 'blur'"},
+        {"gain0.8", "'gain0.8' for --perturb: expected key=value"},
+        {"noise=1,noise=2", "'noise=2' for --perturb: 'noise' given twice"},
     };
     for (const auto& [spec, needle] : bad) {
         const Result r = run(ev + "--perturb " + spec);
         BOOST_TEST_CONTEXT("spec " << spec << "\noutput: " << r.out) {
             BOOST_TEST(r.code == 2);
-            BOOST_TEST(r.out.find("imapsim: error: invalid value for --perturb: " + needle) !=
-                       std::string::npos);
+            BOOST_TEST(r.out.find("imapsim: error: invalid value " + needle) != std::string::npos);
             BOOST_TEST(r.out.find("bad>1") == std::string::npos);  // refused before any work
             BOOST_TEST(!fs::exists(p("x.json")));
         }

@@ -146,7 +146,7 @@ BOOST_AUTO_TEST_CASE(grammar_and_canonical_text) {
 
 BOOST_AUTO_TEST_CASE(bad_specs_name_the_key_and_the_range) {
     const std::vector<std::pair<std::string, std::string>> bad = {
-        {"", "empty"},
+        {"", "expected key=value"},
         {"gain=0", "gain=0"},
         {"gain=-1", "> 0"},
         {"gain=nan", "gain=nan"},

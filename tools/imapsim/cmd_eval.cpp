@@ -498,8 +498,8 @@ Subcommand register_eval(CLI::App& app) {
             if (sub->count("--perturb") > 0) {
                 try {
                     pert = v::parse_perturbation(o->perturb);
-                } catch (const std::invalid_argument& e) {
-                    throw UserError("invalid value for --perturb: " + std::string(e.what()));
+                } catch (const v::PerturbSpecError& e) {
+                    throw UserError("invalid value '" + e.item() + "' for --perturb: " + e.want());
                 }
             }
             const bool perturbed = sub->count("--perturb") > 0;

@@ -15,7 +15,7 @@ namespace imap::vision {
 namespace {
 
 [[noreturn]] void bad(const std::string& key, const std::string& value, const std::string& want) {
-    throw std::invalid_argument("'" + key + "=" + value + "': " + want);
+    throw PerturbSpecError(key + "=" + value, want);
 }
 
 double parse_number(const std::string& key, const std::string& value, double lo, double hi,
@@ -55,18 +55,17 @@ int64_t q16(double v) {
 
 Perturbation parse_perturbation(const std::string& spec) {
     Perturbation p;
-    if (spec.empty()) throw std::invalid_argument("empty SPEC: expected key=value[,key=value...]");
+    if (spec.empty()) throw PerturbSpecError(spec, "expected key=value[,key=value...]");
     std::set<std::string> seen;
     std::stringstream ss(spec);
     for (std::string item; std::getline(ss, item, ',');) {
         const size_t eq = item.find('=');
         if (eq == std::string::npos)
-            throw std::invalid_argument(
-                "'" + item +
-                "': expected key=value with the keys gain, offset, noise, seed, "
-                "image, noise-image");
+            throw PerturbSpecError(item,
+                                   "expected key=value with the keys gain, offset, noise, "
+                                   "seed, image, noise-image");
         const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
-        if (!seen.insert(key).second) throw std::invalid_argument("'" + key + "' given twice");
+        if (!seen.insert(key).second) throw PerturbSpecError(item, "'" + key + "' given twice");
         if (key == "gain") {
             p.gain = parse_number(key, value, 0, 16, true, "expected a number > 0 and <= 16");
         } else if (key == "offset") {
@@ -87,13 +86,12 @@ Perturbation parse_perturbation(const std::string& spec) {
         } else if (key == "noise-image") {
             p.noise_image = parse_images(key, value);
         } else {
-            throw std::invalid_argument("unknown key '" + key +
-                                        "': expected gain, offset, noise, seed, image or "
-                                        "noise-image");
+            throw PerturbSpecError(item, "unknown key '" + key +
+                                             "': expected gain, offset, noise, seed, image "
+                                             "or noise-image");
         }
     }
-    if (!spec.empty() && spec.back() == ',')
-        throw std::invalid_argument("'" + spec + "': trailing ','");
+    if (!spec.empty() && spec.back() == ',') throw PerturbSpecError(spec, "trailing ','");
     return p;
 }
 

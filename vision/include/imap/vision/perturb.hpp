@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <stdexcept>
 #include <string>
 
 namespace imap::vision {
@@ -23,12 +24,25 @@ struct Perturbation {
     bool identity() const { return gain == 1.0 && offset == 0.0 && noise == 0.0; }
 };
 
+// A SPEC refused by parse_perturbation: the offending item (key=value, or
+// the whole SPEC) and what is allowed; what() = "'ITEM': WANT".
+class PerturbSpecError : public std::invalid_argument {
+  public:
+    PerturbSpecError(const std::string& item, const std::string& want)
+        : std::invalid_argument("'" + item + "': " + want), item_(item), want_(want) {}
+    const std::string& item() const { return item_; }
+    const std::string& want() const { return want_; }
+
+  private:
+    std::string item_, want_;
+};
+
 // Parses "key=value[,key=value...]" with the keys gain, offset, noise, seed,
 // image (left|right|both: the images gain and offset change) and
 // noise-image (left|right|both); a key given twice, an unknown key, a
 // missing '=', a value out of range or not a number throws
-// std::invalid_argument whose message names the key, the value and the
-// allowed range (the caller prefixes the option name).
+// PerturbSpecError naming the item and the allowed range (the caller adds
+// the option name).
 Perturbation parse_perturbation(const std::string& spec);
 
 // The canonical text of `p` (every key, parse_perturbation reads it back).
