@@ -447,6 +447,12 @@ ERROR_ROW(eval_D_above_255, kInput, EVAL_OK " --D 256", "--D", "256", "1..255")
 ERROR_ROW(run_Wo_below_Wd, kInput, RUN " --Wo 5 --Wd 10", "Wo = 5", "Wd = 10")
 ERROR_ROW(golden_Wo_below_Wd, kInput, GOLDEN " --Wo 5 --Wd 10", "Wo = 5", "Wd = 10")
 ERROR_ROW(eval_Wo_below_Wd, kInput, EVAL_OK " --D 8 --Wo 5 --Wd 10", "Wo = 5", "Wd = 10")
+ERROR_ROW(eval_perturb_gain_zero, kInput, EVAL_OK " --D 8 --perturb gain=0", "--perturb",
+          "'gain=0'", "> 0 and <= 16")
+ERROR_ROW(eval_perturb_negative_noise, kInput, EVAL_OK " --D 8 --perturb noise=-1", "--perturb",
+          "'noise=-1'", "0..64")
+ERROR_ROW(eval_perturb_unknown_key, kInput, EVAL_OK " --D 8 --perturb blur=3", "--perturb",
+          "'blur'", "noise-image")
 ERROR_ROW(run_negative_km, kInput, RUN " --km -1", "--km", "-1", "0..1000000")
 ERROR_ROW(golden_negative_D, kInput, GOLDEN_ARGS " --D -3", "--D", "-3", "1..255")
 ERROR_ROW(run_non_numeric_D, kInput, RUN_ON("core") " --D abc", "--D", "abc", "1..255")
