@@ -143,9 +143,12 @@ void perturb_image(cv::Mat& img, const Perturbation& p, bool is_right) {
                 }
                 v += s * (sum - kMean);
             }
-            // Round half up: floor(v / 2^32 + 1/2); >> of a negative value floors (C++20
-            // defines it, every C++17 compiler we build with does the same).
-            int64_t r = (v + (int64_t{1} << 31)) >> 32;
+            // Round half up: floor(v / 2^32 + 1/2). v >= -(255 + 64 * 6) * 2^32 > -1024 * 2^32,
+            // so the shift sees a non-negative value (no implementation-defined >>).
+            const int64_t r =
+                static_cast<int64_t>(
+                    static_cast<uint64_t>(v + (int64_t{1024} << 32) + (int64_t{1} << 31)) >> 32) -
+                1024;
             row[x] = static_cast<uint8_t>(r < 0 ? 0 : r > 255 ? 255 : r);
         }
     }
