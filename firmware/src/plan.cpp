@@ -591,7 +591,7 @@ void plan_skew(FramePlan& fp, int span) {
     if (fp.f.kc > 0) return;
     const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
     int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
-    for (int kind = 0; kind < span; ++kind) {
+    for (int kind = 0; kind < (fp.f.bidir ? 2 : 1); ++kind) {
         int a = 0, n = 0;
         in_lanes(fp.f, P, 0, W, kind, &a, &n);
         if (n == 0) continue;
@@ -601,7 +601,7 @@ void plan_skew(FramePlan& fp, int span) {
     if (lo > hi) return;
     const int base = std::max(0, -((lo + hi) / 2));
     // output: kind - x over the map pixels (pixel x leaves the PE of parity x & 1)
-    const int olo = span == 2 ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
+    const int olo = fp.f.bidir ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
     const int skew_out = std::max(0, base + (olo + ohi) / 2);
     const int rows = span * (H - 1) + W;  // lanes spanned by the skewed rows
     if (base + span * H > P || rows > P || skew_out + rows > P) return;
@@ -622,7 +622,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                     int64_t* hop_out) {
     const ForwardPlan& f = fp.f;
     const int P = fp.P;
-    const int span = f.bidir ? 2 : 1;
+    const int span = fp.span(), kinds = f.bidir ? 2 : 1;
     auto ring = [&](int a, int b) {
         int d = ((a - b) % P + P) % P;
         return std::min(d, P - d);
@@ -667,7 +667,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                     const int X = X0 + x;
                     for (int img = 0; img < 2; ++img) {
                         int best = INT_MAX, cnt = 0;
-                        for (int kind = 0; kind < span; ++kind) {
+                        for (int kind = 0; kind < kinds; ++kind) {
                             int lo, hi;
                             need(img, kind, &lo, &hi);
                             if (X < lo || X > hi) continue;
@@ -677,7 +677,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                         if (cnt) hops += best + (cnt - 1);
                     }
                     int ob = ring(pe_of(y, 0), x + ooff(y));
-                    if (span == 2) ob = std::min(ob, ring(pe_of(y, 1), x + ooff(y)));
+                    if (kinds == 2) ob = std::min(ob, ring(pe_of(y, 1), x + ooff(y)));
                     ohops += ob;
                 }
             int64_t cut = 0, ocut = 0;
@@ -687,7 +687,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                     int64_t c_in = 0, c_out = 0;
                     for (int y = 0; y < H; ++y) {
                         const int so = soff(y);
-                        bool kin[2] = {inside(pe_of(y, 0)), span == 2 && inside(pe_of(y, 1))};
+                        bool kin[2] = {inside(pe_of(y, 0)), kinds == 2 && inside(pe_of(y, 1))};
                         if (!kin[0] && !kin[1]) {
                             c_out += overlap(ooff(y), ooff(y) + W - 1, a, len);
                             continue;
@@ -695,7 +695,7 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                         for (int img = 0; img < 2; ++img) {
                             // union of the needed intervals of the kinds inside (as lanes)
                             int lo = INT_MAX, hi = INT_MIN;
-                            for (int kind = 0; kind < span; ++kind) {
+                            for (int kind = 0; kind < kinds; ++kind) {
                                 if (!kin[kind]) continue;
                                 int l, h;
                                 need(img, kind, &l, &h);
@@ -731,8 +731,10 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
     if (hop_out) *hop_out = hout;
 }
 
-FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
-                     const isa::MachineConfig& cfg) {
+namespace {
+
+FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
+                          const isa::MachineConfig& cfg, bool spare) {
     check_options(p, true);
     if (!cfg.indirect)
         throw FirmwareError(
@@ -741,8 +743,9 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
+    fp.spare = spare;
     const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;
-    const int span = bidir ? 2 : 1;
+    const int span = bidir || spare ? 2 : 1, kinds = bidir ? 2 : 1;
     fp.lpb = std::min(fp.P / span, 255);
     // Too few lines per batch for the vote across batches: one line at a
     // time, every pointer table kept in the external memory.
@@ -831,7 +834,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
         int hr = -1, hl = 0;
         for (int g = 0; g < fp.nseg; ++g) {
             const int W = seg_width(fp, g);
-            for (int kind = 0; kind < span; ++kind) {
+            for (int kind = 0; kind < kinds; ++kind) {
                 int a = 0, n = 0;
                 in_lanes(fp.f, P, g, W, kind, &a, &n);
                 if (n == 0) continue;
@@ -911,6 +914,35 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     fp.ext_needed = f.ext_needed;
     relayout_bound(fp, &rl.bound_in, &rl.bound_out, &rl.hop_bound_in, &rl.hop_bound_out);
     return fp;
+}
+
+}  // namespace
+
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
+                     const isa::MachineConfig& cfg) {
+    FramePlan fp = plan_frame_impl(p, roi, cfg, false);
+    // Spilled pointer columns and idle PEs (single mode, one batch, one video
+    // segment, at least two PEs per line): the spare layout keeps them on
+    // chip, in the PE above each line's PE (docs/firmware.md, section 3).
+    const ForwardPlan& f = fp.f;
+    if (f.bidir || f.tiny || f.ext_needed == 0 || f.kc > 0 || f.agg > 0 || f.bt ||
+        fp.batches.size() != 1 || fp.nseg != 1 || 2 * roi.h > fp.P)
+        return fp;
+    FramePlan sp;
+    try {
+        sp = plan_frame_impl(p, roi, cfg, true);
+    } catch (const FirmwareError&) {
+        return fp;
+    }
+    if (!sp.rl.skew || sp.batches.size() != 1) return fp;
+    // The spare's memory from the forward pass to the last reload: its
+    // constant block and the map (cleared by every PE) stay; the rest is free.
+    const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
+    const int lo = sp.f.kblk + sp.f.kbs, ext = static_cast<int>(sp.f.ext_needed);
+    if (sp.f.map < lo || lo + ext + sp.f.N > mem) return fp;
+    sp.spare_base = lo;  // spill byte e at lo + e, beyond the map's start at lo + e + N
+    sp.ext_needed = 0;
+    return sp;
 }
 
 const std::vector<WaveGroup>& wave_groups() {
@@ -1097,7 +1129,26 @@ void bt_macros(std::ostringstream& os, const ForwardPlan& f) {
     os << ".endm\n";
 }
 
-void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
+// spare_base >= 0: the spilled columns go to the spare PE's memory (RSPILL /
+// RRELOAD over one ring hop) instead of xst / xld: spill byte e at
+// spare_base + e, skipping the map (cleared by every PE before the backtrack).
+void spare_transfer(std::ostringstream& os, const ForwardPlan& f, int spare_base, const char* op,
+                    const Transfer& t) {
+    const int cut = f.map - spare_base;  // spill bytes below the map
+    auto emit = [&](int local, int e, int len) {
+        if (len > 0)
+            os << "        " << op << " " << local << ", " << spare_base + e + (e >= cut ? f.N : 0)
+               << ", " << len << "\n";
+    };
+    if (t.ext < cut && t.ext + t.len > cut) {
+        emit(t.local, t.ext, cut - t.ext);
+        emit(t.local + cut - t.ext, cut, t.ext + t.len - cut);
+    } else {
+        emit(t.local, t.ext, t.len);
+    }
+}
+
+void dp_macros(std::ostringstream& os, const ForwardPlan& f, int spare_base = -1) {
     agg_macros(os, f);
     bt_macros(os, f);
     os << ".macro PLAN_FORWARD\n";
@@ -1108,7 +1159,10 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
            << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << "\n";
         while (si < f.spills.size() && f.spills[si].after == static_cast<int>(i)) {
             const Transfer& t = f.spills[si++];
-            os << "        FSPILL " << t.local << ", " << t.ext << ", " << t.len << "\n";
+            if (spare_base >= 0)
+                spare_transfer(os, f, spare_base, "RSPILL", t);
+            else
+                os << "        FSPILL " << t.local << ", " << t.ext << ", " << t.len << "\n";
         }
     }
     os << "        FEND\n.endm\n";
@@ -1125,7 +1179,10 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f) {
         }
         for (const Transfer& t : f.reloads)
             if (t.after == k)
-                os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
+                if (spare_base >= 0)
+                    spare_transfer(os, f, spare_base, "RRELOAD", t);
+                else
+                    os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
         int addr = -1, maxb = 0, base[2] = {0, 0}, act[2] = {0, 0};
         for (int p = 0; p < f.kinds; ++p) {
             const PointerColumn& c = f.ptr[p][k];
@@ -1171,7 +1228,8 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin);
     equ(os, "DMIN", fp.rl.dmin);
     equ(os, "DMAX", fp.rl.dmax);
-    dp_macros(os, fp.f);
+    equ(os, "SPARE", fp.spare ? 1 : 0);
+    dp_macros(os, fp.f, fp.spare ? fp.spare_base : -1);
     // Per-segment re-layout calls: segment, width, receiver lanes of both kinds.
     os << ".macro PLAN_IN\n";
     for (int g = 0; g < fp.nseg; ++g) {
@@ -1188,7 +1246,7 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         const int W = seg_width(fp, g);
         // displacement sigma = sender - receiver of the output items
         int smin = INT_MAX, smax = INT_MIN;
-        const int span = fp.f.bidir ? 2 : 1;
+        const int span = fp.span();
         if (fp.rl.skew) {
             smin = fp.rl.smin;
             smax = fp.rl.smax;

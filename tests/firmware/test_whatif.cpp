@@ -107,30 +107,101 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_a_frame_down) {
 BOOST_AUTO_TEST_CASE(more_pes_never_slow_the_headline_down) {
     // The headline shape (128x128, D = 64, vote on): 256 PEs hold all 128
     // lines and fill the ring in bidir mode, 512 and 1024 do not (128 PEs
-    // hold them in single mode). Bidir: the frame time is non-increasing.
-    // Single mode spills 704 B of pointers per PE to the external memory,
-    // whose transfers move every PE's bytes over the one shared path
-    // (docs/isa.md, xfer): that phase grows with P; everything else,
-    // the re-layout included, is non-increasing.
+    // hold them in single mode). Both modes: the frame time is
+    // non-increasing. Single mode spills 704 B of pointers per PE: to the
+    // external memory up to 256 PEs, whose transfers move every PE's bytes
+    // over the one shared path (docs/isa.md, xfer), and from 512 PEs on into
+    // the spare PE beside each line's PE (docs/firmware.md, section 3), which
+    // does not grow with P. The re-layout is non-increasing too, except at
+    // the switch to the spare layout, where the skewed rounds compute the row
+    // index as q / 2 (one more instruction per round in and out: 2 x 128).
     for (const g::Mode mode : {g::Mode::Bidir, g::Mode::Single}) {
         g::Params p;  // D = 64, vote on
         p.mode = mode;
         const bool bidir = mode == g::Mode::Bidir;
         uint64_t prev = UINT64_MAX, prev_rl = UINT64_MAX;
-        for (int P = bidir ? 256 : 128; P <= 1024; P *= 2) {
+        bool prev_spare = false;
+        for (int P = bidir ? 256 : 16; P <= 1024; P *= 2) {
             const Measured m = run_case(p, 128, 128, P);
             const uint64_t rl = m.r.relayout_in + m.r.relayout_out;
-            const uint64_t t = bidir ? m.r.cycles : m.r.cycles - phase(m.r, "spill");
             BOOST_TEST_MESSAGE("128x128 D=64 " << (bidir ? "bidir" : "single") << " P=" << P << ": "
                                                << m.r.cycles << " (in " << m.r.relayout_in
                                                << ", out " << m.r.relayout_out << ", spill "
                                                << phase(m.r, "spill") << ")");
-            BOOST_TEST(t <= prev, "P=" << P << ": " << t << " > " << prev);
-            BOOST_TEST(rl <= prev_rl, "P=" << P << ": re-layout " << rl << " > " << prev_rl);
+            BOOST_TEST(m.r.cycles <= prev, "P=" << P << ": " << m.r.cycles << " > " << prev);
+            const uint64_t slack = m.plan.spare && !prev_spare ? 2 * 128 : 0;
+            BOOST_TEST(rl <= prev_rl + slack,
+                       "P=" << P << ": re-layout " << rl << " > " << prev_rl);
             BOOST_TEST(m.r.relayout_bound_in <= int64_t(m.r.relayout_in));
             BOOST_TEST(m.r.relayout_bound_out <= int64_t(m.r.relayout_out));
-            prev = t;
+            prev = m.r.cycles;
             prev_rl = rl;
+            prev_spare = m.plan.spare;
+        }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(single_mode_keeps_spilled_pointers_on_chip) {
+    // Single mode, pointers that do not fit: with a spare PE beside every
+    // line's PE the spilled columns go over one ring hop into the spare's
+    // memory (no external bytes), bit-exact (run_case), and the spill phase
+    // does not grow with P; without spares (256 PEs hold 128 lines and the
+    // skewed rows of the spare layout do not fit) they go to the external
+    // memory as before.
+    g::Params p;  // D = 64, vote on
+    p.mode = g::Mode::Single;
+    const Measured ext = run_case(p, 128, 128, 256);
+    BOOST_TEST(!ext.plan.spare);
+    BOOST_TEST(ext.plan.ext_needed == 704);
+    uint64_t first = 0;
+    for (int P : {512, 1024}) {
+        const Measured m = run_case(p, 128, 128, P);
+        const uint64_t spill = phase(m.r, "spill");
+        BOOST_TEST_MESSAGE("single 128x128 D=64 P=" << P << ": " << m.r.cycles << ", spill "
+                                                    << spill << " (external at 256: "
+                                                    << phase(ext.r, "spill") << ")");
+        BOOST_TEST(m.plan.spare);
+        BOOST_TEST(m.plan.ext_needed == 0);
+        BOOST_TEST(m.plan.f.ext_needed == 704);  // the same columns spill
+        BOOST_TEST(spill > 0u);
+        BOOST_TEST(spill * 5 < phase(ext.r, "spill"));
+        if (first == 0) first = spill;
+        BOOST_TEST(spill == first);
+        BOOST_TEST(m.r.cycles < ext.r.cycles);
+    }
+    // Other shapes: shorter and narrower ROIs, without the vote, the left and
+    // right frames, less local memory (more columns spill).
+    struct C {
+        int W, H, D, P;
+        bool vote;
+        int mem;
+        g::Frame frame;
+    };
+    for (const C& c : {C{96, 20, 64, 256, true, 1024, g::Frame::Cyclopean},
+                       C{64, 16, 48, 128, false, 420, g::Frame::Left},
+                       C{80, 12, 40, 128, true, 600, g::Frame::Right}}) {
+        g::Params q;
+        q.mode = g::Mode::Single;
+        q.D = c.D;
+        q.vote = c.vote;
+        q.frame = c.frame;
+        BOOST_TEST_CONTEXT("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P) {
+            std::mt19937 rng(uint32_t(c.W * 31 + c.H));
+            const Frame fr = random_frame(rng, c.W, c.H, c.D);
+            isa::MachineConfig cfg;
+            cfg.pes = uint32_t(c.P);
+            cfg.mem_bytes = uint32_t(c.mem);
+            const g::Roi roi{0, 0, c.W, c.H};
+            const fw::FramePlan plan = fw::plan_frame(q, roi, cfg);
+            BOOST_TEST(plan.spare);
+            BOOST_TEST(plan.f.ext_needed > 0);
+            const isa::Program prog = fw::assemble_frame(q, plan);
+            const fw::FrameResult r =
+                fw::run_frame_core(plan, prog, g::ImageView{fr.L.data(), c.W, c.H, c.W},
+                                   g::ImageView{fr.R.data(), c.W, c.H, c.W}, cfg);
+            const g::DisparityMap want = g::compute(q, g::ImageView{fr.L.data(), c.W, c.H, c.W},
+                                                    g::ImageView{fr.R.data(), c.W, c.H, c.W}, roi);
+            BOOST_TEST(r.map.data == want.data);
         }
     }
 }

@@ -171,6 +171,12 @@ struct FramePlan {
     std::vector<Batch> batches;
     int mem_needed = 0;      // local bytes per PE
     int64_t ext_needed = 0;  // external bytes per PE
+    // Single mode with spare PEs (docs/firmware.md, section 3): line y on PE
+    // BP + 2y, the spilled pointer columns kept in the PE above it (the
+    // spare) from local address spare_base on, not in the external memory.
+    bool spare = false;
+    int spare_base = 0;
+    int span() const { return f.bidir || spare ? 2 : 1; }
 };
 
 inline constexpr int kMaxBatches = 62;  // batch table in the param block
