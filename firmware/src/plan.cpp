@@ -941,6 +941,28 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     const int lo = sp.f.kblk + sp.f.kbs, ext = static_cast<int>(sp.f.ext_needed);
     if (sp.f.map < lo || lo + ext + sp.f.N > mem) return fp;
     sp.spare_base = lo;  // spill byte e at lo + e, beyond the map's start at lo + e + N
+    // Only where it is cheaper: the external transfers cost ~2 * len * P / 8
+    // per column, the spare's 3 cycles per byte each way, plus one
+    // instruction per skewed round (q / 2) and the vote's two hops instead of
+    // one (4 ring instructions per backtrack step; the steps estimated as 3 *
+    // (KMAX + D), 2.6x the headline's). On a small ring the external path wins.
+    const isa::CostTable& c = cfg.costs;
+    const uint64_t P = uint64_t(sp.P);
+    uint64_t ext_cost = 0, spare_cost = 16;  // set-up and the forward pass's mask
+    for (const Transfer& t : sp.f.spills) {
+        ext_cost += c.xfer_cycles(uint64_t(t.len), P);
+        spare_cost += uint64_t(t.len) * (2 * c.mem + c.ring_hop) +
+                      uint64_t(ceil_div(t.len, 8) + 1) * 2 * c.mask;
+    }
+    for (const Transfer& t : sp.f.reloads) {
+        ext_cost += c.xfer_cycles(uint64_t(t.len), P);
+        spare_cost += uint64_t(t.len) * (2 * c.mem + c.ring_hop) +
+                      uint64_t(ceil_div(t.len, 7) + 1) * (c.mem + c.alu + 3 * c.mask);
+    }
+    spare_cost +=
+        uint64_t(c.alu) * uint64_t((sp.rl.dmax - sp.rl.dmin + 1) + (sp.rl.smax - sp.rl.smin + 1));
+    if (p.vote) spare_cost += 4ull * c.ring_hop * 3 * uint64_t(sp.f.kmax + p.D);
+    if (spare_cost >= ext_cost) return fp;
     sp.ext_needed = 0;
     return sp;
 }
@@ -1177,12 +1199,13 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f, int spare_base = -1
                 if (ps.k == k) size = std::max(size, ps.bytes);
             if (ext_addr >= 0) os << "        TRELOAD " << ext_addr << ", " << size << "\n";
         }
-        for (const Transfer& t : f.reloads)
-            if (t.after == k)
-                if (spare_base >= 0)
-                    spare_transfer(os, f, spare_base, "RRELOAD", t);
-                else
-                    os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
+        for (const Transfer& t : f.reloads) {
+            if (t.after != k) continue;
+            if (spare_base >= 0)
+                spare_transfer(os, f, spare_base, "RRELOAD", t);
+            else
+                os << "        FRELOAD " << t.local << ", " << t.ext << ", " << t.len << "\n";
+        }
         int addr = -1, maxb = 0, base[2] = {0, 0}, act[2] = {0, 0};
         for (int p = 0; p < f.kinds; ++p) {
             const PointerColumn& c = f.ptr[p][k];
