@@ -9,7 +9,12 @@
 # Prints the best points, the rank of the preset, a leave-one-scene-out check
 # (tune on three scenes, score the fourth) and the preset's neighbours (one
 # swept value changed).
-#   scripts/tune-quality.sh [BUILD_DIR] [DATA_DIR]     (QUICK=1: a 10-point grid)
+#   scripts/tune-quality.sh [BUILD_DIR] [DATA_DIR]
+#     QUICK=1           a 10-point grid
+#     WINDOWS=firmware  only the windows the firmware runs (ry = 0: 1x1, 3x1,
+#                       5x1; 600 points); "the preset" is then today's
+#                       --preset quality (5x1, f = 1: Wo = Wd = 80), otherwise
+#                       the 5x5 window of variant quality-5x5 (f = 1: 400)
 set -euo pipefail
 build="${1:-build}"
 data="${2:-$(dirname "$0")/../../shared/data/middlebury}"
@@ -17,10 +22,23 @@ export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=DISABLE
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-python3 - "$work/sets.txt" "${QUICK:-0}" <<'PY'
+windows="${WINDOWS:-all}"
+case "$windows" in
+all | firmware) ;;
+*)
+  echo "tune-quality.sh: WINDOWS=$windows: expected all or firmware" >&2
+  exit 2
+  ;;
+esac
+python3 - "$work/sets.txt" "${QUICK:-0}" "$windows" <<'PY'
 import sys
-out, quick = sys.argv[1], sys.argv[2] == "1"
-if quick:
+out, quick, windows = sys.argv[1], sys.argv[2] == "1", sys.argv[3]
+if quick and windows == "firmware":
+    grid = dict(kc=[4], census=[2], adm=[16], win=[(1, 0), (2, 0)], f=[0.5, 0.7, 1.0, 1.4, 2.0])
+elif windows == "firmware":
+    grid = dict(kc=[2, 3, 4, 6, 8], census=[1, 2], adm=[8, 16, 32, 255],
+                win=[(0, 0), (1, 0), (2, 0)], f=[0.5, 0.7, 1.0, 1.4, 2.0])
+elif quick:
     grid = dict(kc=[4], census=[2], adm=[16], win=[(1, 1), (2, 2)], f=[0.5, 0.7, 1.0, 1.4, 2.0])
 else:
     grid = dict(kc=[2, 3, 4, 6, 8], census=[1, 2], adm=[8, 16, 32, 255],
@@ -42,9 +60,10 @@ sed 's/  # f=.*//' "$work/sets.txt" > "$work/flags.txt"
 "$build/imapsim" eval --all "$data" --param-sets "$work/flags.txt" --json "$work/out.json" \
   > /dev/null
 
-python3 - "$work/out.json" "$work/sets.txt" <<'PY'
+python3 - "$work/out.json" "$work/sets.txt" "$windows" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))
+preset_window = "2,0" if sys.argv[3] == "firmware" else "2,2"
 fs = [l.split("# f=")[1].strip() for l in open(sys.argv[2])]
 pts = []
 for r, f in zip(rows, fs):
@@ -64,7 +83,7 @@ order = sorted(pts, key=mean)
 print("\nbest points:")
 for p in order[:12]:
     print(f"  {mean(p):5.2f} {mean(p,'all'):6.2f} {mean(p,'disc'):6.2f}  {label(p)}")
-preset = [p for p in pts if p[0] == (4, 2, 16, "2,2", "1.0")]
+preset = [p for p in pts if p[0] == (4, 2, 16, preset_window, "1.0")]
 if preset:
     pr = preset[0]
     print(f"\nthe preset: {mean(pr):5.2f} {mean(pr,'all'):6.2f} {mean(pr,'disc'):6.2f}  "
