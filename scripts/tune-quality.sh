@@ -11,10 +11,10 @@
 # swept value changed).
 #   scripts/tune-quality.sh [BUILD_DIR] [DATA_DIR]
 #     QUICK=1           a 10-point grid
-#     WINDOWS=firmware  only the windows the firmware runs (ry = 0: 1x1, 3x1,
-#                       5x1; 600 points); "the preset" is then today's
-#                       --preset quality (5x1, f = 1: Wo = Wd = 80), otherwise
-#                       the 5x5 window of variant quality-5x5 (f = 1: 400)
+#     WINDOWS=horizontal  only horizontal windows (ry = 0: 1x1, 3x1, 5x1; 600
+#                       points); "the preset" is then variant quality-5x1
+#                       (f = 1: Wo = Wd = 80), otherwise --preset quality
+#                       (its 5x5 window, f = 1: 400)
 set -euo pipefail
 build="${1:-build}"
 data="${2:-$(dirname "$0")/../../shared/data/middlebury}"
@@ -24,18 +24,18 @@ trap 'rm -rf "$work"' EXIT
 
 windows="${WINDOWS:-all}"
 case "$windows" in
-all | firmware) ;;
+all | horizontal) ;;
 *)
-  echo "tune-quality.sh: WINDOWS=$windows: expected all or firmware" >&2
+  echo "tune-quality.sh: WINDOWS=$windows: expected all or horizontal" >&2
   exit 2
   ;;
 esac
 python3 - "$work/sets.txt" "${QUICK:-0}" "$windows" <<'PY'
 import sys
 out, quick, windows = sys.argv[1], sys.argv[2] == "1", sys.argv[3]
-if quick and windows == "firmware":
+if quick and windows == "horizontal":
     grid = dict(kc=[4], census=[2], adm=[16], win=[(1, 0), (2, 0)], f=[0.5, 0.7, 1.0, 1.4, 2.0])
-elif windows == "firmware":
+elif windows == "horizontal":
     grid = dict(kc=[2, 3, 4, 6, 8], census=[1, 2], adm=[8, 16, 32, 255],
                 win=[(0, 0), (1, 0), (2, 0)], f=[0.5, 0.7, 1.0, 1.4, 2.0])
 elif quick:
@@ -63,7 +63,7 @@ sed 's/  # f=.*//' "$work/sets.txt" > "$work/flags.txt"
 python3 - "$work/out.json" "$work/sets.txt" "$windows" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))
-preset_window = "2,0" if sys.argv[3] == "firmware" else "2,2"
+preset_window = "2,0" if sys.argv[3] == "horizontal" else "2,2"
 fs = [l.split("# f=")[1].strip() for l in open(sys.argv[2])]
 pts = []
 for r, f in zip(rows, fs):

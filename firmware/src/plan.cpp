@@ -14,6 +14,7 @@ namespace {
 // per-PE constant block: K_KIND .. K_END and two re-layout bytes (dp_setup.inc checks it)
 constexpr int kKBlockSize = 10;     // 8 constants + 2 bytes of the re-layout
 constexpr int kPopTableBytes = 16;  // the census's popcount of a nibble (census.inc)
+constexpr int kAggFlagBytes = 2;    // agg-ry: lines above / below in the ROI (dp_setup.inc)
 constexpr int kNever = INT_MAX;
 
 int ceil_div(int a, int b) {
@@ -296,12 +297,12 @@ void check_options(const golden::Params& p, bool census_ok) {
     if (p.kc != off.kc && !census_ok) add("--kc " + std::to_string(p.kc));
     if (p.agg_rx != off.agg_rx && (!census_ok || p.agg_rx > 2))
         add("--agg-rx " + std::to_string(p.agg_rx));
-    if (p.agg_ry != off.agg_ry) add("--agg-ry " + std::to_string(p.agg_ry));
+    if (p.agg_ry != off.agg_ry && !census_ok) add("--agg-ry " + std::to_string(p.agg_ry));
     if (!missing.empty())
         throw FirmwareError("the DP firmware does not implement the SPEC A.9 option(s) " + missing +
                             (census_ok ? " (it runs SPEC A.1-A.7 with --ad-max, --dissim ad/bt, "
-                                         "--kc/--census, --agg-rx 0..2 and --mode joint; needs "
-                                         "--agg-rx <= 2, --agg-ry 0; the golden runs all)"
+                                         "--kc/--census, --agg-rx 0..2, --agg-ry and --mode "
+                                         "joint; needs --agg-rx <= 2; the golden runs all)"
                                        : " (the forward-pass test layout runs SPEC A.1-A.7 with "
                                          "--ad-max and --mode joint; needs --dissim ad, --kc 0, "
                                          "--agg-rx 0, --agg-ry 0)"));
@@ -315,7 +316,7 @@ void check_range(const golden::Params& p) {
         os << "firmware: cost spread max((2*agg-rx+1)*(2*agg-ry+1)*(km*min(255, ad-max) + "
               "kb*gb + 8*kc), Wo + Wd) = "
            << std::max(w, od) << " exceeds the 16-bit costs' range (needs <= " << kMaxSpread
-           << "; lower --km, --kb, --gb, --kc, --agg-rx, --Wo or --Wd)";
+           << "; lower --km, --kb, --gb, --kc, --agg-rx, --agg-ry, --Wo or --Wd)";
         throw FirmwareError(os.str());
     }
 }
@@ -350,7 +351,8 @@ golden::Params firmware_part(const golden::Params& p) {
     if (p.kc > 0) q.km = p.km;  // the census keeps the cost valid without |a - b|
     q.kc = p.kc;                // the census (census.inc)
     q.census = p.census;
-    if (p.agg_ry == 0) q.agg_rx = p.agg_rx;  // a horizontal window (the window phase)
+    q.agg_rx = p.agg_rx;  // the window: its copies (window phase) and row sums (AGG_ROWS)
+    q.agg_ry = p.agg_ry;
     return q;
 }
 
@@ -426,7 +428,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     // Line buffers: R' reversed below rb, L' above it, so that the consumed
     // prefixes of both form one growing region (docs/firmware.md, section 3).
     f.kblk = 0;
-    f.kbs = kKBlockSize + (p.kc > 0 ? kPopTableBytes : 0);
+    f.kbs = kKBlockSize + (p.kc > 0 ? kPopTableBytes : 0) + (p.agg_ry > 0 ? kAggFlagBytes : 0);
     f.kr = f.kmax;
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
@@ -494,6 +496,18 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
                << (f.bt ? " (with the bt bounds)" : "") << " (have " << mem0 << ", mem_bytes)";
             throw FirmwareError(os.str());
         }
+    }
+    if (p.agg_ry > 0) {
+        // The vertical window: the match cost of every level of the column
+        // pass, computed before its nodes (AGG_ROWS, dp_forward.inc), in two
+        // byte planes after the costs; below the pointer region.
+        f.aggy = p.agg_ry;
+        f.wl = f.preg;
+        f.wh = f.wl + p.D;
+        f.preg = f.wh + p.D;
+        f.h8 =
+            int64_t{2 * p.agg_rx + 1} * (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc) <=
+            255;
     }
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     if (f.preg > mem) {
@@ -585,10 +599,6 @@ int seg_width(const FramePlan& fp, int g) {
 void plan_skew(FramePlan& fp, int span) {
     Relayout& rl = fp.rl;
     if (fp.nseg != 1) return;
-    // The census codes are computed in the video layout, where every line's
-    // ROI edge sits on the same lanes (census.inc); skewed rows would move
-    // them by a line's span per line. Census frames keep the direct rows.
-    if (fp.f.kc > 0) return;
     const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
     int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
     for (int kind = 0; kind < (fp.f.bidir ? 2 : 1); ++kind) {
@@ -718,6 +728,11 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                     cut = std::max(cut, c_in);
                     ocut = std::max(ocut, c_out);
                 }
+            // census frames: every needed pixel comes with its code (a second
+            // pair of rows over the same routes), twice the bytes in
+            const int per = f.census > 0 ? 2 : 1;
+            hops *= per;
+            cut *= per;
             const int64_t hb_in = (hops + P - 1) / P, hb_out = (ohops + P - 1) / P;
             tin += std::max(hb_in, cut);
             tout += std::max(hb_out, ocut);
@@ -794,6 +809,13 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
+    if (p.agg_ry > 0 && (tiny || fp.batches.size() > 1)) {
+        std::ostringstream os;
+        os << "firmware: --agg-ry " << p.agg_ry << " (vertical window) needs the ROI's " << H
+           << " lines in one batch (the match cost of line y sums the lines y-" << p.agg_ry
+           << "..y+" << p.agg_ry << " of the ROI): needs " << span * H << " PEs, have " << fp.P;
+        throw FirmwareError(os.str());
+    }
     if (p.kc > 0 && fp.batches.size() > 1) {
         std::ostringstream os;
         os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << H
@@ -925,7 +947,7 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
     // segment, at least two PEs per line): the spare layout keeps them on
     // chip, in the PE above each line's PE (docs/firmware.md, section 3).
     const ForwardPlan& f = fp.f;
-    if (f.bidir || f.tiny || f.ext_needed == 0 || f.kc > 0 || f.agg > 0 || f.bt ||
+    if (f.bidir || f.tiny || f.ext_needed == 0 || f.kc > 0 || f.agg > 0 || f.aggy > 0 || f.bt ||
         fp.batches.size() != 1 || fp.nseg != 1 || 2 * roi.h > fp.P)
         return fp;
     FramePlan sp;
@@ -1063,6 +1085,10 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "BT", f.bt ? 1 : 0);
     equ(os, "BLO", f.blo);
     equ(os, "BHI", f.bhi);
+    equ(os, "AGGY", f.aggy);
+    equ(os, "WL", f.wl);
+    equ(os, "WH", f.wh);
+    equ(os, "H8", f.h8 ? 1 : 0);
     equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 

@@ -88,7 +88,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += c.pixels + 16;
         c.items.push_back(fmt("census", node, pixel, c.pixels + 16));
     }
-    if (rx > 0 && !(in_firmware && ry == 0)) {  // the firmware runs a horizontal window
+    if (rx > 0 && !in_firmware) {  // the firmware runs the window (docs/firmware.md, section 10)
         // the pixel costs of the 2 rx previous columns live in a rolling
         // buffer: load them, add them to the new one, store the new one over
         // the oldest (read just before).
@@ -98,7 +98,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += bytes;
         c.items.push_back(fmt("agg-rx", node, 0, bytes));
     }
-    if (ry > 0) {
+    if (ry > 0 && !in_firmware) {
         // per line distance v: the row sums of lines y-v and y+v over the ring
         // (hop PEs further each), a border select each, two adds.
         const double node = ry * (2.0 * hop * hb + 2.0 * hb + 2.0 * sb);
@@ -148,15 +148,17 @@ const std::vector<Variant>& tradeoff_variants() {
         add("quality-3x3", "quality with a 3x3 window, Wo = Wd = 144", p);
         p = quality;
         p.agg_rx = 1;
-        add("quality-3x1", "quality with a 3x1 window", p);
+        p.agg_ry = 0;
+        p.Wo = p.Wd = 80;
+        add("quality-3x1", "quality with a 3x1 window, Wo = Wd = 80", p);
         p = quality;
         p.ad_max = 255;
         add("quality-notrunc", "quality, ad-max 255", p);
         add("quality", "the quality preset", quality);
         p = quality;
-        p.agg_ry = 2;
-        p.Wo = p.Wd = 400;
-        add("quality-5x5", "quality with a 5x5 window, Wo = Wd = 400", p);
+        p.agg_ry = 0;
+        p.Wo = p.Wd = 80;
+        add("quality-5x1", "quality with a 5x1 window, Wo = Wd = 80", p);
         p = quality;
         p.dissim = Dissim::Bt;
         add("quality-bt", "quality, dissim bt", p);

@@ -171,9 +171,9 @@ Params preset(const std::string& name) {
     p.kc = 4;
     p.census = 2;
     p.agg_rx = 2;
-    p.agg_ry = 0;  // the 5x1 window the firmware runs (a 5x5 window: variant quality-5x5)
-    p.Wo = 80;
-    p.Wd = 80;
+    p.agg_ry = 2;  // the 5x5 window (the 5x1 window: variant quality-5x1)
+    p.Wo = 400;
+    p.Wd = 400;
     return p;
 }
 

@@ -70,9 +70,9 @@ int random_pes(std::mt19937& rng, const g::Params& p, const g::Roi& roi, bool ce
 std::string options_context(const g::Params& p, const g::Roi& roi, int P) {
     std::ostringstream os;
     os << describe(p, roi.w, roi.h) << " dissim=" << g::to_string(p.dissim)
-       << " agg-rx=" << p.agg_rx << " kc=" << p.kc << " census=" << p.census << " km=" << p.km
-       << " ad-max=" << p.ad_max << " vote=" << p.vote << " frame=" << g::to_string(p.frame)
-       << " P=" << P;
+       << " agg-rx=" << p.agg_rx << " agg-ry=" << p.agg_ry << " kc=" << p.kc
+       << " census=" << p.census << " km=" << p.km << " ad-max=" << p.ad_max << " vote=" << p.vote
+       << " frame=" << g::to_string(p.frame) << " P=" << P;
     return os.str();
 }
 
@@ -142,7 +142,6 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
     };
     const Case cases[] = {
         {"agg-rx", [](g::Params& p) { p.agg_rx = 3; }, "--agg-rx 3"},
-        {"agg-ry", [](g::Params& p) { p.agg_ry = 1; }, "--agg-ry 1"},
     };
     for (const Case& c : cases) {
         g::Params p;
@@ -169,10 +168,20 @@ BOOST_AUTO_TEST_CASE(options_not_in_the_firmware_are_refused) {
                        std::string::npos);
         }
     }
-    g::Params q5 = g::preset("quality");
-    q5.agg_ry = 2;  // the 5x5 window (trade-off variant quality-5x5)
-    const std::string q = refusal(q5, g::Roi{0, 0, 128, 128});
-    BOOST_TEST(q.find("option(s) --agg-ry 2 (") != std::string::npos);
+    {
+        // the forward-pass test layout has no border flags for the vertical window
+        g::Params v;
+        v.agg_ry = 1;
+        BOOST_TEST(refusal(v, roi).empty());
+        isa::MachineConfig cfg;
+        try {
+            fw::plan_forward(v, roi.w, cfg);
+            BOOST_ERROR("plan_forward accepted --agg-ry 1");
+        } catch (const fw::FirmwareError& e) {
+            BOOST_TEST(std::string(e.what()).find("--agg-ry 1 (the forward-pass test layout") !=
+                       std::string::npos);
+        }
+    }
     // the forward-pass test layout (host-filled line buffers) has no codes
     g::Params c;
     c.kc = 4;
@@ -314,8 +323,7 @@ BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
             BOOST_TEST((f.dissim == p.dissim));
             BOOST_TEST((f.mode == p.mode));
             BOOST_TEST((f.kc == p.kc && f.census == p.census));
-            BOOST_TEST(f.agg_ry == 0);
-            BOOST_TEST(f.agg_rx == (p.agg_ry == 0 ? p.agg_rx : 0));
+            BOOST_TEST((f.agg_rx == p.agg_rx && f.agg_ry == p.agg_ry));
             // never refused for an option; a variant may not fit the memory
             // (quality-single: the window copies need 1,072 bytes per PE)
             const std::string why = refusal(f, roi);
@@ -480,6 +488,159 @@ BOOST_AUTO_TEST_CASE(window_grid_and_headline) {
     BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).empty());
 }
 
+BOOST_AUTO_TEST_CASE(census_on_skewed_rows) {
+    // Where the lines do not fill the ring, census frames take the skewed
+    // video rows (docs/firmware.md, section 5): pixel x of line y on lane
+    // x + span * y, so the codes read the rows y -+ r span * r hops away and
+    // the first and last r lines (clamped neighbours) are emitted one by
+    // one. Every mode, both radii, ROIs of 1 to 12 lines (no middle loop up
+    // to 2r + 1 lines), with and without the windows.
+    std::mt19937 rng(4242);
+    const Frame fr = random_frame(rng, 30, 16, 8);
+    int runs = 0;
+    for (int mode = 0; mode < 3; ++mode)
+        for (int r : {1, 2})
+            for (int H : {1, 2, 3, 4, 5, 6, 12}) {
+                g::Params p;
+                p.D = 8;
+                p.mode = mode == 0 ? g::Mode::Single : mode == 1 ? g::Mode::Bidir : g::Mode::Joint;
+                p.kc = 3;
+                p.census = r;
+                p.agg_rx = H % 3 == 0 ? 1 : 0;
+                p.agg_ry = H % 4 == 0 ? 1 : 0;
+                const g::Roi roi{3, 1, 20, H};
+                isa::MachineConfig cfg;
+                cfg.pes = 64;
+                BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                                   << " census=" << r << " agg-rx=" << p.agg_rx
+                                   << " agg-ry=" << p.agg_ry) {
+                    const fw::FramePlan fp = fw::plan_frame(p, roi, cfg);
+                    BOOST_TEST(fp.rl.skew);
+                    check_frame(p, fr, roi, 64);
+                    ++runs;
+                }
+            }
+    BOOST_TEST(runs == 42);
+}
+
+BOOST_AUTO_TEST_CASE(vertical_window_random_frames) {
+    // SPEC A.9 vertical aggregation (agg-ry 1..3) over random frames: with and
+    // without the horizontal window, the census and bt, every mode, the
+    // ROI's lines in one batch (refused otherwise), video segments without
+    // the census; both the one-byte and the two-byte row sums.
+    std::mt19937 rng(8086);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    int h8 = 0, h16 = 0;
+    for (int it = 0; it < 40; ++it) {
+        const int W = uni(4, 40), Hi = uni(1, 12);
+        const g::Roi roi = random_roi(rng, W, Hi);
+        const bool census = uni(0, 2) == 0;
+        g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
+        p.agg_ry = uni(1, 3);
+        p.agg_rx = uni(0, 2);
+        if (uni(0, 3) == 0) p.dissim = g::Dissim::Bt;
+        if (p.kc * 8 > 1000) p.kc = 50;
+        auto wm = [&] {
+            return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
+                   (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
+        };
+        while (wm() > 30000 && p.km > 1) p.km /= 2;
+        while (wm() > 30000 && p.kc > 1) p.kc /= 2;
+        if (wm() > 30000) p.agg_ry = 1;
+        if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+        const int span = p.mode == g::Mode::Single ? 1 : 2;
+        const int P =
+            uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * roi.h, census ? roi.w : 2}), 48);
+        isa::MachineConfig cfg;
+        cfg.pes = static_cast<uint32_t>(P);
+        cfg.mem_bytes = 2048;  // the bt bounds of the window copies need more than 1 KB
+        const fw::FramePlan fp = fw::plan_frame(p, roi, cfg);
+        (fp.f.h8 ? h8 : h16) += 1;
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(options_context(p, roi, P) << " h8=" << fp.f.h8) {
+            check_frame(p, fr, roi, P, nullptr, 2048);
+        }
+    }
+    BOOST_TEST(h8 > 0);
+    BOOST_TEST(h16 > 0);
+}
+
+BOOST_AUTO_TEST_CASE(vertical_window_grid_headline_and_refusals) {
+    std::mt19937 rng(1999);
+    const Frame fr = random_frame(rng, 72, 24, 24);
+    const g::Roi roi{5, 3, 60, 18};
+    for (int mode = 0; mode < 3; ++mode)
+        for (int ry : {1, 2})
+            for (int rx : {0, 2})
+                for (int kc : {0, 4}) {
+                    g::Params p;
+                    p.D = 20;
+                    p.mode = mode == 0   ? g::Mode::Single
+                             : mode == 1 ? g::Mode::Bidir
+                                         : g::Mode::Joint;
+                    p.km = 1;
+                    p.kb = 0;
+                    p.gb = 0;
+                    p.Wo = p.Wd = 80;
+                    p.ad_max = 16;
+                    p.kc = kc;
+                    p.agg_rx = rx;
+                    p.agg_ry = ry;
+                    BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                                       << " agg-rx=" << rx << " agg-ry=" << ry << " kc=" << kc) {
+                        check_frame(p, fr, roi, 64);
+                    }
+                }
+    // the paper's weights: two-byte row sums
+    g::Params w;
+    w.D = 16;
+    w.agg_ry = 2;
+    w.agg_rx = 1;
+    {
+        isa::MachineConfig cfg;
+        cfg.pes = 64;
+        BOOST_TEST(!fw::plan_frame(w, roi, cfg).f.h8);
+    }
+    check_frame(w, fr, roi, 64);
+    // the headline with the 5x5 window (quality, agg-ry 2)
+    const Frame big = random_frame(rng, 160, 140, 40);
+    g::Params q = g::preset("quality");
+    q.agg_ry = 2;
+    q.D = 64;
+    uint64_t cycles = 0;
+    check_frame(q, big, g::Roi{16, 6, 128, 128}, 256, &cycles);
+    BOOST_TEST_MESSAGE("quality 5x5 joint headline cycles: " << cycles);
+    BOOST_TEST(cycles <= 40u * 40000u);  // within the 40 ms budget at 40 MHz
+    // the vertical part multiplies Wm_max in the 16-bit range check
+    g::Params r;
+    r.km = 30;
+    r.kb = 0;
+    r.agg_ry = 2;  // 5 * 30 * 255 = 38,250 > 32,766
+    BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).find("= 38250 exceeds") != std::string::npos);
+    BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).find("--agg-ry") != std::string::npos);
+    r.agg_ry = 1;  // 22,950
+    BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).empty());
+    // the lines of the window must be in one batch
+    g::Params b = g::preset("quality");
+    b.agg_ry = 2;
+    b.D = 8;
+    isa::MachineConfig small;
+    small.pes = 16;
+    try {
+        fw::plan_frame(b, g::Roi{0, 0, 16, 12}, small);
+        BOOST_ERROR("a vertical window over two batches was accepted");
+    } catch (const fw::FirmwareError& e) {
+        BOOST_TEST(std::string(e.what()).find("--agg-ry 2 (vertical window) needs the ROI's 12 "
+                                              "lines in one batch") != std::string::npos,
+                   e.what());
+    }
+    g::Params t;  // the one-line-per-batch mode (bidir, 4 PEs, the vote)
+    t.agg_ry = 1;
+    t.D = 4;
+    small.pes = 4;
+    BOOST_CHECK_THROW(fw::plan_frame(t, g::Roi{0, 0, 16, 5}, small), fw::FirmwareError);
+}
+
 BOOST_AUTO_TEST_CASE(bt_random_frames) {
     // SPEC A.9 dissim bt: with and without the census and the horizontal
     // window, every mode, batches, video segments and the one-line-per-batch
@@ -552,11 +713,13 @@ BOOST_AUTO_TEST_CASE(bt_grid_modes_window_census_and_headline) {
     q.dissim = g::Dissim::Bt;
     q.D = 64;
     // the window's copies and their bounds do not fit 1024 bytes: refused
-    // with the least memory that does, and bit-exact with it
-    BOOST_TEST(refusal(q, g::Roi{16, 6, 128, 128}).find("needs at least 1392 bytes") !=
+    // with the least memory that does (1,392 for the copies, constants and
+    // costs of the 5x1 window, + 2 for the vertical window's border flags),
+    // and bit-exact with it
+    BOOST_TEST(refusal(q, g::Roi{16, 6, 128, 128}).find("needs at least 1394 bytes") !=
                std::string::npos);
     uint64_t cycles = 0;
-    check_frame(q, big, g::Roi{16, 6, 128, 128}, 256, &cycles, 1392);
+    check_frame(q, big, g::Roi{16, 6, 128, 128}, 256, &cycles, 1394);
     BOOST_TEST_MESSAGE("quality + bt headline cycles: " << cycles);
 }
 

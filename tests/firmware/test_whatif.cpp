@@ -104,6 +104,31 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_a_frame_down) {
     }
 }
 
+BOOST_AUTO_TEST_CASE(census_frames_relayout_never_grows_with_the_pes) {
+    // The quality preset's census codes travel with the pixels: past the PE
+    // count whose lines fill the ring (256) the skewed rows serve census
+    // frames too, so the re-layout does not grow with P; the bound counts
+    // the codes as needed bytes and never exceeds what the firmware measures.
+    // (The frame as a whole still grows from 512 PEs on: joint mode's
+    // spilled pointers cross the shared external path, docs/whatif.md.)
+    g::Params p = g::preset("quality");
+    uint64_t prev_rl = UINT64_MAX;
+    for (int P : {256, 512, 1024}) {
+        const Measured m = run_case(p, 128, 128, P);
+        const uint64_t rl = m.r.relayout_in + m.r.relayout_out;
+        BOOST_TEST_MESSAGE("quality 128x128 P="
+                           << P << ": " << m.r.cycles << " (in " << m.r.relayout_in << " bound "
+                           << m.r.relayout_bound_in << ", out " << m.r.relayout_out << ", spill "
+                           << phase(m.r, "spill") << ")");
+        BOOST_TEST(rl <= prev_rl, "P=" << P << ": re-layout " << rl << " > " << prev_rl);
+        BOOST_TEST(m.r.relayout_bound_in <= int64_t(m.r.relayout_in));
+        BOOST_TEST(m.r.relayout_bound_out <= int64_t(m.r.relayout_out));
+        BOOST_TEST(m.r.relayout_in <= uint64_t(4 * m.r.relayout_bound_in));
+        BOOST_TEST(m.plan.rl.skew == (P > 256));
+        prev_rl = rl;
+    }
+}
+
 BOOST_AUTO_TEST_CASE(more_pes_never_slow_the_headline_down) {
     // The headline shape (128x128, D = 64, vote on): 256 PEs hold all 128
     // lines and fill the ring in bidir mode, 512 and 1024 do not (128 PEs

@@ -561,8 +561,8 @@ BOOST_AUTO_TEST_CASE(presets) {
     const g::Params q = g::preset("quality");
     BOOST_TEST(g::uses_options(q));
     BOOST_CHECK_NO_THROW(g::validate_for_width(q, 128));
-    BOOST_TEST(g::options_string(q) == "--mode joint --ad-max 16 --kc 4 --agg-rx 2");
-    BOOST_TEST((q.agg_ry == 0 && q.Wo == 80 && q.Wd == 80 && q.census == 2));
+    BOOST_TEST(g::options_string(q) == "--mode joint --ad-max 16 --kc 4 --agg-rx 2 --agg-ry 2");
+    BOOST_TEST((q.agg_ry == 2 && q.Wo == 400 && q.Wd == 400 && q.census == 2));
     BOOST_CHECK_THROW(g::preset("fast"), g::ParamError);
     // joint alone is an option; a census radius without kc is not
     g::Params p;
@@ -571,8 +571,8 @@ BOOST_AUTO_TEST_CASE(presets) {
 }
 
 BOOST_AUTO_TEST_CASE(cost_estimate_arithmetic) {
-    // docs/golden.md, "Firmware cost estimates": the quality preset with the
-    // 5x5 window (variant quality-5x5) at the headline case (N = 128, D = 64,
+    // docs/golden.md, "Firmware cost estimates": the quality preset (its 5x5
+    // window) at the headline case (N = 128, D = 64,
     // balanced s = 48: the busier joint PE computes max(s + 1, N - 1 - s) =
     // 79 columns).
     g::Params q = g::preset("quality");
@@ -593,14 +593,13 @@ BOOST_AUTO_TEST_CASE(cost_estimate_arithmetic) {
     BOOST_TEST(c.local_bytes == 232 + 16 + 4 * 64);
     BOOST_TEST(c.cycles == 79 * 64 * 41 + 232 * 37 + 916);
     BOOST_TEST(g::estimate_options(g::preset("paper"), 128).cycles == 0);
-    // ad-max, joint and the census run in the firmware: measured, not
-    // estimated; the window is estimated whole when it has a vertical part
+    // every option runs in the firmware (ad-max, joint, the census, the
+    // whole window): measured, not estimated
     const g::OptionCost m = g::estimate_options(q, 128, /*in_firmware=*/true);
-    BOOST_TEST(m.per_node == 9.0 + 20);
+    BOOST_TEST(m.per_node == 0);
     BOOST_TEST(m.per_pixel == 0);
     BOOST_TEST(m.per_batch == 0);
-    BOOST_TEST(m.cycles == 79 * 64 * 29);
-    // ... and not at all when it is horizontal (the preset itself)
+    BOOST_TEST(m.cycles == 0);
     g::Params h = g::preset("quality");
     h.D = 64;
     BOOST_TEST(g::estimate_options(h, 128, /*in_firmware=*/true).cycles == 0);

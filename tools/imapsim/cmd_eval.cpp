@@ -165,11 +165,10 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
     std::printf(
         "mean %s %% over %zu scene(s) (nonocc, all, disc; per-scene nonocc) and modeled ms "
         "of the headline case\n(128x128, D=64, 256 PEs, 40 MHz): fw = the firmware "
-        "running what it implements (measured: the paper's algorithm with --ad-max, --mode "
-        "joint, --dissim bt, the census and a horizontal window), +A.9 = ESTIMATE of the "
-        "options not in the firmware yet (vertical aggregation); fw 'refused' = the firmware "
-        "refuses "
-        "the variant at the headline\n\n",
+        "running the variant (measured: the paper's algorithm with --ad-max, --mode joint, "
+        "--dissim bt, the census and the window), +A.9 = ESTIMATE of the options not in the "
+        "firmware (none today); fw 'refused' = the firmware refuses the variant at the "
+        "headline\n\n",
         delta_txt, scenes.size());
     std::printf("%-16s %7s %7s %7s", "variant", "nonocc", "all", "disc");
     for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());

@@ -96,6 +96,13 @@ struct ForwardPlan {
     // node reads (line buffers, or the window's copies) at its address + blo / + bhi.
     bool bt = false;
     int blo = 0, bhi = 0;
+    // SPEC A.9 vertical aggregation (agg-ry > 0, docs/firmware.md, section
+    // 10): before each column pass, every PE computes its line's row sums
+    // H(k, j) over the window's sites, adds those of the lines y-aggy..y+aggy
+    // (the same-kind PEs span hops away, clamped into the ROI) and stores the
+    // match cost at wl + j / wh + j; h8: every row sum fits one byte.
+    int aggy = 0, wl = 0, wh = 0;
+    bool h8 = false;
     int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
     int map = 0;      // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
@@ -119,9 +126,9 @@ struct ForwardPlan {
 
 // The part of `p` the firmware runs (docs/firmware.md, section 10): the
 // same parameters with the SPEC A.9 options it does not implement turned
-// off (a vertical window: no aggregation); --ad-max, --mode joint,
-// --dissim bt, the census and a horizontal window stay. For the trade-off table's measured
-// part; a parameter set with those options is refused by plan_frame.
+// off; --ad-max, --mode joint, --dissim bt, the census and the window stay.
+// For the trade-off table's measured part; a parameter set with other
+// options is refused by plan_frame.
 golden::Params firmware_part(const golden::Params& p);
 
 // Checks the cost range and plans the forward pass and its memory for

@@ -31,11 +31,9 @@ struct OptionCost {
 // Added cost of the A.9 options of `p` for one batch of lines of a ROI of
 // width N (p.D levels); zero for the paper's algorithm. Joint mode is
 // costed as bidir plus the meeting of the two wavefronts. in_firmware: the
-// firmware runs --ad-max, --mode joint, --dissim bt, the census and a horizontal
-// window (docs/firmware.md, section 10), so
-// their cost is in the measured part and not estimated here (the other
-// options still use p.ad_max for the size of the pixel term and joint's
-// column count).
+// firmware runs every A.9 option (--ad-max, --mode joint, --dissim bt, the
+// census and the window; docs/firmware.md, section 10), so their cost is in
+// the measured part and nothing is estimated.
 OptionCost estimate_options(const Params& p, int N, bool in_firmware = false);
 
 // The paper part of `p`: the same parameters with every A.9 option off and
