@@ -120,6 +120,39 @@ void column_passes(ForwardPlan& f) {
     }
 }
 
+// The window's sums (AGG_ROWS): a pass updates the previous column's sum at
+// the levels every kind of the pass computed there (a horizontal window
+// only: the change is two pixel terms, the whole sum 2 agg + 1), and sums
+// the others whole: the first column, the level a kind gains at the bottom,
+// and in a shared pass the levels above a kind's previous top.
+void window_segments(ForwardPlan& f) {
+    std::vector<int> plo[2], phi[2];  // levels kind p computed in column k
+    for (int p = 0; p < 2; ++p) {
+        plo[p].assign(f.kmax + 2, INT_MAX);
+        phi[p].assign(f.kmax + 2, INT_MIN);
+    }
+    for (const ForwardPass& ps : f.passes)
+        for (int p = 0; p < f.kinds; ++p)
+            if ((ps.kind == p || ps.kind == -1) && ps.k <= f.K[p]) {
+                plo[p][ps.k] = std::min(plo[p][ps.k], ps.jlo);
+                phi[p][ps.k] = std::max(phi[p][ps.k], ps.jlo + ps.n - 1);
+            }
+    for (ForwardPass& ps : f.passes) {
+        ps.rfull = ps.n;
+        ps.rinc = 0;
+        if (f.agg == 0 || ps.k == 1) continue;
+        int lo = ps.jlo, hi = ps.jlo + ps.n - 1;
+        for (int p = 0; p < f.kinds; ++p)
+            if ((ps.kind == p || ps.kind == -1) && ps.k <= f.K[p]) {
+                lo = std::max(lo, plo[p][ps.k - 1]);
+                hi = std::min(hi, phi[p][ps.k - 1]);
+            }
+        if (lo > hi) continue;
+        ps.rfull = lo - ps.jlo;
+        ps.rinc = hi - lo + 1;
+    }
+}
+
 // Bytes of a pass holding kind p's pointers (a shared pass computes the
 // union of the kinds' ranges; a kind's pointers are the bytes up to its top).
 int kind_bytes(const ForwardPlan& f, const ForwardPass& ps, int p) {
@@ -497,17 +530,19 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
             throw FirmwareError(os.str());
         }
     }
-    if (p.agg_ry > 0) {
-        // The vertical window: the match cost of every level of the column
-        // pass, computed before its nodes (AGG_ROWS, dp_forward.inc), in two
-        // byte planes after the costs; below the pointer region.
+    if (p.agg_rx > 0 || p.agg_ry > 0) {
+        // The window: the match cost of every level of the column pass,
+        // computed before its nodes (AGG_ROWS, dp_forward.inc), in two byte
+        // planes after the costs; below the pointer region.
+        f.rows = true;
         f.aggy = p.agg_ry;
         f.wl = f.preg;
         f.wh = f.wl + p.D;
         f.preg = f.wh + p.D;
-        f.h8 =
-            int64_t{2 * p.agg_rx + 1} * (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc) <=
-            255;
+        f.pmax = p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc;
+        f.h8 = int64_t{2 * p.agg_rx + 1} * f.pmax <= 255;
+        f.d8 = 2 * int64_t{f.pmax} <= 255;
+        window_segments(f);
     }
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     if (f.preg > mem) {
@@ -1085,10 +1120,13 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
     equ(os, "BT", f.bt ? 1 : 0);
     equ(os, "BLO", f.blo);
     equ(os, "BHI", f.bhi);
+    equ(os, "AGGR", f.rows ? 1 : 0);
     equ(os, "AGGY", f.aggy);
     equ(os, "WL", f.wl);
     equ(os, "WH", f.wh);
+    equ(os, "PMAX", f.pmax);
     equ(os, "H8", f.h8 ? 1 : 0);
+    equ(os, "D8", f.d8 ? 1 : 0);
     equ(os, "EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0);
 }
 
@@ -1204,7 +1242,8 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f, int spare_base = -1
     for (size_t i = 0; i < f.passes.size(); ++i) {
         const ForwardPass& ps = f.passes[i];
         os << "        FCOL " << ps.k << ", " << ps.kind << ", " << ps.jlo << ", " << ps.n << ", "
-           << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << "\n";
+           << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << ", " << ps.rfull
+           << ", " << ps.rinc << "\n";
         while (si < f.spills.size() && f.spills[si].after == static_cast<int>(i)) {
             const Transfer& t = f.spills[si++];
             if (spare_base >= 0)

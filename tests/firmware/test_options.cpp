@@ -466,6 +466,19 @@ BOOST_AUTO_TEST_CASE(window_grid_and_headline) {
                 p.kc = kc;
                 p.agg_rx = rx;
                 BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h) << " agg-rx=" << rx << " kc=" << kc) {
+                    // most slots update the previous column's window sum
+                    // (AGG_BODY's agginc); the first column and the level a
+                    // kind gains at the bottom are summed whole
+                    isa::MachineConfig cfg;
+                    cfg.pes = 64;
+                    const fw::FramePlan fp = fw::plan_frame(p, roi, cfg);
+                    int64_t inc = 0;
+                    for (const fw::ForwardPass& ps : fp.f.passes) {
+                        BOOST_TEST(ps.rfull + ps.rinc <= ps.n);
+                        BOOST_TEST((ps.k > 1 || ps.rinc == 0));
+                        inc += ps.rinc;
+                    }
+                    BOOST_TEST(2 * inc > fp.f.slots);
                     check_frame(p, fr, roi, 64);
                 }
             }

@@ -44,6 +44,12 @@ struct ForwardPass {
     bool pad = false;    // the last slot is level D-1: write the pad after the pass
     int addr = 0;        // local address of the pass's pointer bytes (or of the staging area)
     int bytes = 0;       // ceil(n / 4)
+    // The window's match costs (AGG_ROWS, dp_forward.inc): the first `rfull`
+    // slots and those after rfull + rinc are summed whole; the `rinc` slots
+    // between them, which every kind of the pass computed in the previous
+    // column, update that column's sum (the site entering the window minus
+    // the one leaving it).
+    int rfull = 0, rinc = 0;
 };
 
 // Where the pointer bytes of column k of a kind are during the backtrack.
@@ -96,13 +102,14 @@ struct ForwardPlan {
     // node reads (line buffers, or the window's copies) at its address + blo / + bhi.
     bool bt = false;
     int blo = 0, bhi = 0;
-    // SPEC A.9 vertical aggregation (agg-ry > 0, docs/firmware.md, section
-    // 10): before each column pass, every PE computes its line's row sums
-    // H(k, j) over the window's sites, adds those of the lines y-aggy..y+aggy
-    // (the same-kind PEs span hops away, clamped into the ROI) and stores the
-    // match cost at wl + j / wh + j; h8: every row sum fits one byte.
-    int aggy = 0, wl = 0, wh = 0;
-    bool h8 = false;
+    // SPEC A.9 window (agg-rx or agg-ry > 0, docs/firmware.md, section 10):
+    // before each column pass, every PE computes its line's row sums H(k, j)
+    // over the window's sites (or their change from column k - 1), adds those
+    // of the lines y-aggy..y+aggy (the same-kind PEs span hops away, clamped
+    // into the ROI) and stores the match cost at wl + j / wh + j. h8: every
+    // row sum fits one byte; d8: every change, biased by pmax, does.
+    int aggy = 0, wl = 0, wh = 0, pmax = 0;
+    bool rows = false, h8 = false, d8 = false;
     int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
     int map = 0;      // output line (N bytes) during the backtrack and after
     int mem_needed = 0;
