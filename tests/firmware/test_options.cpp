@@ -35,6 +35,24 @@ g::Params random_option_params(std::mt19937& rng, int N) {
     return p;
 }
 
+g::Mode mode_of(int i) {
+    return i == 0 ? g::Mode::Single : i == 1 ? g::Mode::Bidir : g::Mode::Joint;
+}
+
+// A grid point of mode `mode_of(mode)` at the quality preset's pixel weights
+// (km 1, kb 0, gb 0) with Wo = Wd = 80.
+g::Params quality_weights(int mode, int D, int ad_max) {
+    g::Params p;
+    p.D = D;
+    p.mode = mode_of(mode);
+    p.km = 1;
+    p.kb = 0;
+    p.gb = 0;
+    p.Wo = p.Wd = 80;
+    p.ad_max = ad_max;
+    return p;
+}
+
 std::string refusal(const g::Params& p, const g::Roi& roi) {
     isa::MachineConfig cfg;
     try {
@@ -236,16 +254,7 @@ BOOST_AUTO_TEST_CASE(census_grid_radius_kc_modes_ad_max) {
         for (int r : {1, 2})
             for (int kc : {1, 4, 9})
                 for (int ad : {16, 255}) {
-                    g::Params p;
-                    p.D = 20;
-                    p.mode = mode == 0   ? g::Mode::Single
-                             : mode == 1 ? g::Mode::Bidir
-                                         : g::Mode::Joint;
-                    p.km = 1;
-                    p.kb = 0;
-                    p.gb = 0;
-                    p.Wo = p.Wd = 80;
-                    p.ad_max = ad;
+                    g::Params p = quality_weights(mode, 20, ad);
                     p.kc = kc;
                     p.census = r;
                     BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
@@ -455,14 +464,7 @@ BOOST_AUTO_TEST_CASE(window_grid_and_headline) {
     for (int mode = 0; mode < 3; ++mode)
         for (int rx : {1, 2})
             for (int kc : {0, 4}) {
-                g::Params p;
-                p.D = 20;
-                p.mode = mode == 0 ? g::Mode::Single : mode == 1 ? g::Mode::Bidir : g::Mode::Joint;
-                p.km = 1;
-                p.kb = 0;
-                p.gb = 0;
-                p.Wo = p.Wd = 80;
-                p.ad_max = 16;
+                g::Params p = quality_weights(mode, 20, 16);
                 p.kc = kc;
                 p.agg_rx = rx;
                 BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h) << " agg-rx=" << rx << " kc=" << kc) {
@@ -516,7 +518,7 @@ BOOST_AUTO_TEST_CASE(census_on_skewed_rows) {
             for (int H : {1, 2, 3, 4, 5, 6, 12}) {
                 g::Params p;
                 p.D = 8;
-                p.mode = mode == 0 ? g::Mode::Single : mode == 1 ? g::Mode::Bidir : g::Mode::Joint;
+                p.mode = mode_of(mode);
                 p.kc = 3;
                 p.census = r;
                 p.agg_rx = H % 3 == 0 ? 1 : 0;
@@ -586,16 +588,7 @@ BOOST_AUTO_TEST_CASE(vertical_window_grid_headline_and_refusals) {
         for (int ry : {1, 2})
             for (int rx : {0, 2})
                 for (int kc : {0, 4}) {
-                    g::Params p;
-                    p.D = 20;
-                    p.mode = mode == 0   ? g::Mode::Single
-                             : mode == 1 ? g::Mode::Bidir
-                                         : g::Mode::Joint;
-                    p.km = 1;
-                    p.kb = 0;
-                    p.gb = 0;
-                    p.Wo = p.Wd = 80;
-                    p.ad_max = 16;
+                    g::Params p = quality_weights(mode, 20, 16);
                     p.kc = kc;
                     p.agg_rx = rx;
                     p.agg_ry = ry;
@@ -693,9 +686,7 @@ BOOST_AUTO_TEST_CASE(bt_grid_modes_window_census_and_headline) {
                 for (int ad : {16, 255}) {
                     g::Params p;
                     p.D = 20;
-                    p.mode = mode == 0   ? g::Mode::Single
-                             : mode == 1 ? g::Mode::Bidir
-                                         : g::Mode::Joint;
+                    p.mode = mode_of(mode);
                     p.dissim = g::Dissim::Bt;
                     p.km = kc > 0 ? 1 : 8;
                     p.kb = kc > 0 ? 0 : 1;
