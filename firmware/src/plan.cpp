@@ -120,7 +120,7 @@ void column_passes(ForwardPlan& f) {
     }
 }
 
-// The window's sums (AGG_ROWS): a pass updates the previous column's sum at
+// The window's sums (AGG_BODY): a pass updates the previous column's sum at
 // the levels every kind of the pass computed there (a horizontal window
 // only: the change is two pixel terms, the whole sum 2 agg + 1), and sums
 // the others whole: the first column, the level a kind gains at the bottom,
@@ -384,7 +384,7 @@ golden::Params firmware_part(const golden::Params& p) {
     if (p.kc > 0) q.km = p.km;  // the census keeps the cost valid without |a - b|
     q.kc = p.kc;                // the census (census.inc)
     q.census = p.census;
-    q.agg_rx = p.agg_rx;  // the window: its copies (window phase) and row sums (AGG_ROWS)
+    q.agg_rx = p.agg_rx;  // the window: its copies (window phase) and row sums (AGG_BODY)
     q.agg_ry = p.agg_ry;
     return q;
 }
@@ -532,7 +532,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
     }
     if (p.agg_rx > 0 || p.agg_ry > 0) {
         // The window: the match cost of every level of the column pass,
-        // computed before its nodes (AGG_ROWS, dp_forward.inc), in two byte
+        // computed before its nodes (AGG_BODY, dp_forward.inc), in two byte
         // planes after the costs; below the pointer region.
         f.rows = true;
         f.aggy = p.agg_ry;

@@ -44,7 +44,7 @@ struct ForwardPass {
     bool pad = false;    // the last slot is level D-1: write the pad after the pass
     int addr = 0;        // local address of the pass's pointer bytes (or of the staging area)
     int bytes = 0;       // ceil(n / 4)
-    // The window's match costs (AGG_ROWS, dp_forward.inc): the first `rfull`
+    // The window's match costs (AGG_BODY, dp_forward.inc): the first `rfull`
     // slots and those after rfull + rinc are summed whole; the `rinc` slots
     // between them, which every kind of the pass computed in the previous
     // column, update that column's sum (the site entering the window minus
