@@ -40,6 +40,14 @@ struct Fixture {
     ~Fixture() { fs::remove_all(dir); }
     std::string p(const std::string& name) const { return (dir / name).string(); }
     std::string pair() const { return "--left " + p("left.png") + " --right " + p("right.png"); }
+    // Writes the synthetic scene of `seed` (96x32, with ground truth) to
+    // scene/ and returns the eval command prefix for it (D = 25).
+    std::string eval_on_scene(int seed) const {
+        BOOST_REQUIRE(
+            run("synth --seed " + std::to_string(seed) + " --size 96x32 --out-dir " + p("scene"))
+                .code == 0);
+        return "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    }
 };
 
 void expect_input_error(const Fixture& f, const std::string& extra, const std::string& needle) {
@@ -147,8 +155,7 @@ nlohmann::json read_json(const std::string& path) {
 BOOST_FIXTURE_TEST_CASE(presets_and_overrides, Fixture) {
     // --preset quality sets the SPEC A.9 options; a flag given overrides its
     // preset value; the golden row names the preset.
-    BOOST_REQUIRE(run("synth --seed 3 --size 96x32 --out-dir " + p("scene")).code == 0);
-    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --matcher golden ";
+    const std::string ev = eval_on_scene(3) + "--matcher golden ";
     const Result q = run(ev + "--preset quality --json " + p("q.json"));
     BOOST_TEST_INFO(q.out);
     BOOST_REQUIRE(q.code == 0);
@@ -205,8 +212,7 @@ BOOST_FIXTURE_TEST_CASE(the_firmware_refuses_a9_options, Fixture) {
 }
 
 BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
-    BOOST_REQUIRE(run("synth --seed 5 --size 96x32 --out-dir " + p("scene")).code == 0);
-    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const std::string ev = eval_on_scene(5);
     const Result t = run(ev + "--tradeoff --json " + p("t.json") + " --plot " + p("t.png"));
     BOOST_TEST_INFO(t.out);
     BOOST_REQUIRE(t.code == 0);
@@ -254,12 +260,11 @@ BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
 }
 
 BOOST_FIXTURE_TEST_CASE(eval_param_sets, Fixture) {
-    BOOST_REQUIRE(run("synth --seed 4 --size 96x32 --out-dir " + p("scene")).code == 0);
+    const std::string ev = eval_on_scene(4);
     {
         std::ofstream f(p("sets.txt"));
         f << "# two sets\n--preset paper\n\n--preset quality --kc 2 --Wo 300 --Wd 300\n";
     }
-    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
     const Result r = run(ev + "--param-sets " + p("sets.txt") + " --json " + p("s.json"));
     BOOST_TEST_INFO(r.out);
     BOOST_REQUIRE(r.code == 0);
@@ -286,8 +291,7 @@ BOOST_FIXTURE_TEST_CASE(eval_param_sets, Fixture) {
 }
 
 BOOST_FIXTURE_TEST_CASE(eval_perturb, Fixture) {
-    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
-    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 ";
+    const std::string ev = eval_on_scene(6);
     const std::string spec = "gain=0.8,offset=10,noise=3,seed=4";
     const Result r = run(ev + "--matcher all --perturb " + spec + " --json " + p("p.json"));
     BOOST_TEST_INFO(r.out);
@@ -326,9 +330,7 @@ BOOST_FIXTURE_TEST_CASE(eval_perturb, Fixture) {
 }
 
 BOOST_FIXTURE_TEST_CASE(eval_perturb_bad_specs, Fixture) {
-    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
-    const std::string ev =
-        "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --json " + p("x.json") + " ";
+    const std::string ev = eval_on_scene(6) + "--json " + p("x.json") + " ";
     const std::vector<std::pair<std::string, std::string>> bad = {
         {"gain=0", "'gain=0' for --perturb: expected a number > 0 and <= 16"},
         {"gain=-0.5", "'gain=-0.5' for --perturb: expected a number > 0"},
@@ -353,8 +355,7 @@ BOOST_FIXTURE_TEST_CASE(eval_perturb_bad_specs, Fixture) {
 }
 
 BOOST_FIXTURE_TEST_CASE(eval_robustness, Fixture) {
-    BOOST_REQUIRE(run("synth --seed 6 --size 96x32 --out-dir " + p("scene")).code == 0);
-    const std::string ev = "eval --scene " + p("scene") + " --gt-scale 1 --D 25 --matcher golden ";
+    const std::string ev = eval_on_scene(6) + "--matcher golden ";
     const Result r = run(ev + "--preset quality --robustness --json " + p("r.json"));
     BOOST_TEST_INFO(r.out);
     BOOST_REQUIRE(r.code == 0);
