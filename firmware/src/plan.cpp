@@ -4,6 +4,7 @@
 #include <climits>
 #include <sstream>
 
+#include "imap/golden/cost.hpp"
 #include "imap/golden/estimate.hpp"
 #include "imap/isa/assembler.hpp"
 
@@ -21,9 +22,9 @@ int ceil_div(int a, int b) {
     return (a + b - 1) / b;
 }
 
-int wm_max(const golden::Params& p) {
-    return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
-           (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
+// The largest match cost (SPEC A.9): the window's terms times the largest pixel term.
+int64_t wm_max(const golden::Params& p) {
+    return golden::window_terms(p) * golden::pixel_cost_max(p);
 }
 
 // The level range of each kind at every column (docs/firmware.md, section 1).
@@ -539,7 +540,7 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.wl = f.preg;
         f.wh = f.wl + p.D;
         f.preg = f.wh + p.D;
-        f.pmax = p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc;
+        f.pmax = static_cast<int>(golden::pixel_cost_max(p));  // <= 32,766: check_range
         f.h8 = int64_t{2 * p.agg_rx + 1} * f.pmax <= 255;
         f.d8 = 2 * int64_t{f.pmax} <= 255;
         window_segments(f);

@@ -46,7 +46,8 @@ Params paper_part(const Params& p) {
 
 OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
     OptionCost c;
-    if (!uses_options(p)) return c;
+    // the firmware runs every A.9 option: nothing of it is estimated
+    if (!uses_options(p) || in_firmware) return c;
     const int D = p.D;
     const bool two = p.mode != Mode::Single;  // two PEs per line
     int kmax = N;
@@ -63,11 +64,11 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
     const int cb = bytes_of(cmax);                    // one pixel term
     const int hb = bytes_of((2 * rx + 1) * cmax);     // its sum over the sites
     const int sb = bytes_of(window_terms(p) * cmax);  // the whole window
-    if (p.ad_max < 255 && !in_firmware) {
+    if (p.ad_max < 255) {
         c.per_node += 1;  // mini
         c.items.push_back(fmt("ad-max", 1, 0, 0));
     }
-    if (p.dissim == Dissim::Bt && !in_firmware) {  // the firmware runs bt (BT_BOUNDS, WM_ADD)
+    if (p.dissim == Dissim::Bt) {
         // two loads (lo, hi of the left pixel) and 10 ALU operations instead of
         // max/min/sub; lo/hi of both images per pixel: 2 loads, 2 adds, 2
         // shifts, 4 min/max, 2 stores.
@@ -76,7 +77,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += 2 * c.pixels;
         c.items.push_back(fmt("dissim bt", 12, 12, 2 * c.pixels));
     }
-    if (p.kc > 0 && !in_firmware) {  // the firmware runs the census (docs/firmware.md, section 10)
+    if (p.kc > 0) {
         // ld code, xor, andi + shri (nibbles), 2 ldx of a 16-entry table (2
         // cycles each), add, kc by shift-and-add, add into the pixel cost.
         const double node = 1 + 1 + 2 + 4 + 1 + mul_ops(p.kc, 1) + cb;
@@ -88,7 +89,7 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += c.pixels + 16;
         c.items.push_back(fmt("census", node, pixel, c.pixels + 16));
     }
-    if (rx > 0 && !in_firmware) {  // the firmware runs the window (docs/firmware.md, section 10)
+    if (rx > 0) {
         // the pixel costs of the 2 rx previous columns live in a rolling
         // buffer: load them, add them to the new one, store the new one over
         // the oldest (read just before).
@@ -98,14 +99,14 @@ OptionCost estimate_options(const Params& p, int N, bool in_firmware) {
         c.local_bytes += bytes;
         c.items.push_back(fmt("agg-rx", node, 0, bytes));
     }
-    if (ry > 0 && !in_firmware) {
+    if (ry > 0) {
         // per line distance v: the row sums of lines y-v and y+v over the ring
         // (hop PEs further each), a border select each, two adds.
         const double node = ry * (2.0 * hop * hb + 2.0 * hb + 2.0 * sb);
         c.per_node += node;
         c.items.push_back(fmt("agg-ry", node, 0, 0));
     }
-    if (p.mode == Mode::Joint && !in_firmware) {
+    if (p.mode == Mode::Joint) {
         // E(s, .) to the partner PE (3 bytes, 1 hop, stored), 24-bit
         // compare-and-select with the level index, js back (1 hop).
         c.per_batch += 3 * D + 3 * D + 8 * D + 20;
