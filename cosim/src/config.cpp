@@ -98,6 +98,9 @@ const std::vector<Mutant>& mutants() {
         {10, "loop_bubble", "loop: a taken loop pays no refill bubble"},
         {11, "melse_top", "melse: uses M instead of the saved mask (forgets the enclosing mif)"},
         {12, "xst_last_row", "xst: the last row of a transfer is not written"},
+        {13, "xld_mask", "xld: rows written on masked PEs too (ignores the mask)"},
+        {14, "xfer_all_pes", "xld / xst: the cost counts every PE, not the active ones"},
+        {15, "xst_mask", "xst: the external memory of masked PEs written too"},
     };
     return m;
 }
@@ -271,13 +274,14 @@ void check_runnable(const isa::MachineConfig& cfg, int waves, bool needs_mutants
         throw isa::ConfigError("RTL: call_depth = " + std::to_string(cfg.call_depth) +
                                " needs a deeper return stack than the design has (" +
                                std::to_string(kHdlCallDepth) + ", imap_top parameter CALL_DEPTH)");
-    const uint64_t path = static_cast<uint64_t>(kHdlXrows) * static_cast<uint64_t>(cfg.pes);
-    if (cfg.costs.ext_bytes_per_cycle > path)
+    // A transfer row holds one byte per active PE, so with one PE active a
+    // cycle completes ext_bytes_per_cycle rows: the row port must take them.
+    if (cfg.costs.ext_bytes_per_cycle > static_cast<uint32_t>(kHdlXrows))
         throw isa::ConfigError(
             "RTL: ext_bytes_per_cycle = " + std::to_string(cfg.costs.ext_bytes_per_cycle) +
-            " is more than the design's transfer path moves per cycle (" +
-            std::to_string(kHdlXrows) + " rows of " + std::to_string(cfg.pes) +
-            " PEs = " + std::to_string(path) + " bytes, imap_top parameter XROWS)");
+            " is more than the design's transfer path writes per cycle (" +
+            std::to_string(kHdlXrows) +
+            " rows, one byte each when a single PE is active; imap_top parameter XROWS)");
     if (cfg.mem_bytes > (1u << 20))
         throw isa::ConfigError("RTL: mem_bytes = " + std::to_string(cfg.mem_bytes) +
                                " is beyond the control word's 20-bit address (1048576)");

@@ -7,6 +7,7 @@
 #include "checker.hpp"
 #include "imap/rtl/random.hpp"
 #include "imap/tlm/sanitizer.hpp"
+#include "model.hpp"
 #include "support.hpp"
 
 namespace imap::rtl {
@@ -390,9 +391,22 @@ void Gen::xfer_block() {
     // source, the xld's destination) makes a dropped or misplaced last row
     // visible
     const uint64_t last = uint64_t{base_reg == 128u ? 0u : lb} + off + len - 1;
-    if (len > 0 && last < o_.mem_bytes && chance(60))
+    // a transfer under a narrower mask (its own mif .. mend): the row stored
+    // before it differs from the other memory's in the PEs it masks, so a
+    // masked PE whose bytes move, or a cost counting them, shows
+    const bool narrow = depth_ < max_mask_ && chance(40);
+    if (len > 0 && last < o_.mem_bytes && (narrow || chance(60)))
         emit(enc(ST, static_cast<uint32_t>(reg()), 0, base_reg, off + len - 1));
+    if (narrow) {
+        emit(enc(static_cast<uint8_t>(CEQI + u(6)), 0, static_cast<uint32_t>(reg()), 0, imm8()));
+        emit(enc(MIF));
+        ++depth_;
+    }
     emit(enc(xst ? XST : XLD, kBase0 + 2, kBase0 + 1, base_reg, off));
+    if (narrow) {
+        emit(enc(MEND));
+        --depth_;
+    }
     if (chance(30)) emit(enc(LD, static_cast<uint32_t>(reg()), 0, 128, lb));
 }
 
@@ -666,7 +680,8 @@ void Gen::run() {
         c.video_line = 1 + static_cast<uint32_t>(u(3));
         c.xfer_setup = static_cast<uint32_t>(u(11));
         static const uint32_t bpc[] = {1, 2, 3, 4, 5, 7, 8, 13, 16, 32};
-        c.ext_bytes_per_cycle = std::min<uint32_t>(bpc[u(10)], 4u * static_cast<uint32_t>(o_.pes));
+        c.ext_bytes_per_cycle =
+            std::min<uint32_t>(bpc[u(10)], static_cast<uint32_t>(detail::kHdlXrows));
         c.shift_bits = 1 + static_cast<uint32_t>(u(7));
         c.minmax_extra = static_cast<uint32_t>(u(3));
     }
@@ -768,7 +783,7 @@ const std::vector<OpInfo>& ops() {
         {0x8B, "cleui", 7, true},   {0x8C, "cgtui", 7, true},   {0x8D, "cgeui", 7, true},
         {0x8E, "tc", 0, true},      {0x8F, "tnot", 0, true},    {0x90, "ld", 12, true},
         {0x91, "st", 12, true},     {0x92, "ldx", 13, true},    {0x93, "stx", 13, true},
-        {0x94, "xld", 14, false},   {0x95, "xst", 14, false},   {0xA0, "rxl", 15, true},
+        {0x94, "xld", 14, true},    {0x95, "xst", 14, true},    {0xA0, "rxl", 15, true},
         {0xA1, "rxr", 15, true},    {0xB0, "mif", 0, false},    {0xB1, "melse", 0, false},
         {0xB2, "mend", 0, false},   {0xB3, "mall", 0, false},   {0xB4, "rany", 16, false},
         {0xB5, "rall", 16, false},  {0xC0, "vin", 26, false},   {0xC1, "vout", 26, false}};

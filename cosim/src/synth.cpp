@@ -43,7 +43,7 @@ const SynthFigures& synthesis() {
         s.pe = unit(detail::synth_pe_json(), detail::synth_pe_mem_json(), "imap_pe", &s.tool);
         s.cp = unit(detail::synth_cp_json(), detail::synth_cp_mem_json(), "imap_cp", nullptr);
         s.params =
-            "PE: NREGS 16, MEM_BYTES 1024, MASK_DEPTH 8, XROWS 4; CP: P 256, "
+            "PE: NREGS 16, MEM_BYTES 1024, MASK_DEPTH 8, XROWS 8; CP: P 256, "
             "IMEM_WORDS 65536, CALL_DEPTH 16";
         s.pe_mem_bytes = 1024;
         s.cp_pes = 256;

@@ -976,53 +976,65 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
 
 }  // namespace
 
-FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
-                     const isa::MachineConfig& cfg) {
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
+                     SpillLayout layout) {
     FramePlan fp = plan_frame_impl(p, roi, cfg, false);
+    if (layout == SpillLayout::External) return fp;
+    const bool forced = layout == SpillLayout::Spare;
+    const auto infeasible = [&](const char* why) {
+        if (forced)
+            throw FirmwareError(std::string("the spare-PE spill layout does not apply: ") + why);
+        return fp;
+    };
     // Spilled pointer columns and idle PEs (single mode, one batch, one video
     // segment, at least two PEs per line): the spare layout keeps them on
     // chip, in the PE above each line's PE (docs/firmware.md, section 3).
     const ForwardPlan& f = fp.f;
-    if (f.bidir || f.tiny || f.ext_needed == 0 || f.kc > 0 || f.agg > 0 || f.aggy > 0 || f.bt ||
-        fp.batches.size() != 1 || fp.nseg != 1 || 2 * roi.h > fp.P)
-        return fp;
+    if (f.bidir || f.tiny || f.kc > 0 || f.agg > 0 || f.aggy > 0 || f.bt)
+        return infeasible("it needs single mode without census, aggregation or bt dissimilarity");
+    if (f.ext_needed == 0) return infeasible("no pointer column spills");
+    if (fp.batches.size() != 1 || fp.nseg != 1 || 2 * roi.h > fp.P)
+        return infeasible("it needs one batch, one video segment and two PEs per ROI line");
     FramePlan sp;
     try {
         sp = plan_frame_impl(p, roi, cfg, true);
     } catch (const FirmwareError&) {
-        return fp;
+        return infeasible("the spare layout's plan does not fit the machine");
     }
-    if (!sp.rl.skew || sp.batches.size() != 1) return fp;
+    if (!sp.rl.skew || sp.batches.size() != 1)
+        return infeasible("the spare layout's lines do not take skewed rows in one batch");
     // The spare's memory from the forward pass to the last reload: its
     // constant block and the map (cleared by every PE) stay; the rest is free.
     const int mem = static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
     const int lo = sp.f.kblk + sp.f.kbs, ext = static_cast<int>(sp.f.ext_needed);
-    if (sp.f.map < lo || lo + ext + sp.f.N > mem) return fp;
+    if (sp.f.map < lo || lo + ext + sp.f.N > mem)
+        return infeasible("the spilled columns do not fit the spare PE's free memory");
     sp.spare_base = lo;  // spill byte e at lo + e, beyond the map's start at lo + e + N
-    // Only where it is cheaper: the external transfers cost ~2 * len * P / 8
-    // per column, the spare's 3 cycles per byte each way, plus one
-    // instruction per skewed round (q / 2) and the vote's two hops instead of
-    // one (4 ring instructions per backtrack step; the steps estimated as 3 *
-    // (KMAX + D), 2.6x the headline's). On a small ring the external path wins.
+    sp.ext_needed = 0;
+    if (forced) return sp;
+    // Only where it is cheaper: the external transfers move the bytes of the
+    // PEs holding a line (len * lines / ext_bytes_per_cycle per column and
+    // direction), the spare's 3 cycles per byte each way, plus one
+    // instruction per skewed round and the vote's two hops instead of one (4
+    // ring instructions per backtrack step; the steps estimated as 3 * (KMAX
+    // + D), 2.6x the headline's). With few lines the external path wins.
     const isa::CostTable& c = cfg.costs;
-    const uint64_t P = uint64_t(sp.P);
+    const uint64_t A = uint64_t(fp.batches[0].lines) * uint64_t(std::max(1, fp.f.kinds));
     uint64_t ext_cost = 0, spare_cost = 16;  // set-up and the forward pass's mask
     for (const Transfer& t : sp.f.spills) {
-        ext_cost += c.xfer_cycles(uint64_t(t.len), P);
+        ext_cost += c.xfer_cycles(uint64_t(t.len), A);
         spare_cost += uint64_t(t.len) * (2 * c.mem + c.ring_hop) +
                       uint64_t(ceil_div(t.len, 8) + 1) * 2 * c.mask;
     }
     for (const Transfer& t : sp.f.reloads) {
-        ext_cost += c.xfer_cycles(uint64_t(t.len), P);
+        ext_cost += c.xfer_cycles(uint64_t(t.len), A);
         spare_cost += uint64_t(t.len) * (2 * c.mem + c.ring_hop) +
                       uint64_t(ceil_div(t.len, 7) + 1) * (c.mem + c.alu + 3 * c.mask);
     }
     spare_cost +=
         uint64_t(c.alu) * uint64_t((sp.rl.dmax - sp.rl.dmin + 1) + (sp.rl.smax - sp.rl.smin + 1));
     if (p.vote) spare_cost += 4ull * c.ring_hop * 3 * uint64_t(sp.f.kmax + p.D);
-    if (spare_cost >= ext_cost) return fp;
-    sp.ext_needed = 0;
-    return sp;
+    return spare_cost < ext_cost ? sp : fp;
 }
 
 const std::vector<WaveGroup>& wave_groups() {

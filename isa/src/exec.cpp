@@ -417,14 +417,23 @@ struct Exec {
         uint8_t* lp = m.mem_ + static_cast<size_t>(loc) * P;
         uint8_t* ep = m.ext_ + static_cast<size_t>(ext) * P;
         const size_t n = static_cast<size_t>(len) * P;
-        if constexpr (Store) {
-            std::memmove(ep, lp, n);
-            m.note_ext_write(static_cast<size_t>(ext) * P, static_cast<size_t>(ext) * P + n);
-        } else {
-            std::memmove(lp, ep, n);
+        // Only the active PEs' bytes cross the path; a masked PE's local
+        // (xld) or external (xst) memory keeps its bytes.
+        uint8_t* dst = Store ? ep : lp;
+        const uint8_t* src = Store ? lp : ep;
+        if (m.full_) {
+            std::memcpy(dst, src, n);
+        } else if (m.active_ > 0) {
+            const uint8_t* mk = m.m_;
+            for (size_t r = 0; r < n; r += P)
+                for (size_t p = 0; p < P; ++p)
+                    if (mk[p]) dst[r + p] = src[r + p];
         }
+        if constexpr (Store)
+            m.note_ext_write(static_cast<size_t>(ext) * P, static_cast<size_t>(ext) * P + n);
         m.extra_ =
-            m.cfg_.costs.xfer_cycles(static_cast<uint64_t>(len), P) - m.cfg_.costs.xfer_setup;
+            m.cfg_.costs.xfer_cycles(static_cast<uint64_t>(len), static_cast<uint64_t>(m.active_)) -
+            m.cfg_.costs.xfer_setup;
     }
 
     // rxl: rd(p) = ra(p - k); rxr: rd(p) = ra(p + k) (indices mod P). Every

@@ -11,7 +11,7 @@ module imap_array
     parameter int NREGS = 16,
     parameter int MEM_BYTES = 1024,
     parameter int MASK_DEPTH = 8,
-    parameter int XROWS = 4
+    parameter int XROWS = 8
 ) (
     input logic clk,
 `ifdef IMAP_MUTANTS
@@ -31,7 +31,8 @@ module imap_array
     output logic memx_bad,  // an active PE's ldx / stx address is out of range
     output logic [15:0] memx_pe,  // the first such PE
     output logic [15:0] memx_off,  // and its per-PE offset (rb:ra)
-    output logic [16:0] active_n  // PEs with M = 1 (valid with red_count)
+    output logic [16:0] active_n,  // PEs with M = 1 (valid with red_count)
+    output logic [P-1:0] xe_pm  // each PE's M: the board writes xst rows of the active PEs only
 );
 
 
@@ -89,6 +90,10 @@ module imap_array
           memx_off = xoff[p];
         end
     if (red_count) for (int p = 0; p < P; p++) active_n = active_n + 17'(st[p][0]);
+  end
+
+  for (genvar p = 0; p < P; p++) begin : g_pm
+    assign xe_pm[p] = st[p][0] | `IMAP_MUT(15);
   end
 
 endmodule

@@ -30,7 +30,7 @@ module imap_cp
     parameter int MASK_DEPTH = 8,
     parameter int CALL_DEPTH = 16,
     parameter int IMEM_WORDS = 65536,
-    parameter int XROWS = 4,
+    parameter int XROWS = 8,
     parameter int PHASES = 256
 ) (
     input logic clk,
@@ -84,7 +84,7 @@ module imap_cp
     output logic [31:0] xe_prow,
     output logic xe_wr,  // write xe_n ext rows from the PEs' row ports
     output logic [31:0] xe_wrow,
-    output logic [2:0] xe_n,
+    output logic [3:0] xe_n,
     output logic vid_open,  // vin / vout enters execute: check (and fetch) the line
     output logic vid_out,  // ... 1 = vout
     output logic [0:0] vid_oport,
@@ -158,6 +158,7 @@ module imap_cp
   // transfer engine
   logic x_setup;  // in the setup cycles
   logic [47:0] x_brem;  // bytes still to cross the path
+  logic [16:0] x_act;  // active PEs of the transfer (their bytes cross the path)
   logic [31:0] x_cred;  // bytes of the row being filled
   logic [31:0] x_rdone;  // rows transferred
   logic [31:0] x_ebase;  // external address
@@ -169,6 +170,9 @@ module imap_cp
   // the active-PE count (perf)
   logic [16:0] m_active;
   logic m_dirty;
+  // PEs with M = 1 now: the array's count while a mask change is pending
+  logic [16:0] active_now;
+  assign active_now = m_dirty ? active_n : m_active;
   // fault record
   imap_pkg::fault_t f_code /*verilator public_flat_rd*/;
   logic [PCW:0] f_pc_q /*verilator public_flat_rd*/;
@@ -347,6 +351,9 @@ module imap_cp
   logic x_step;  // shifter pass / ring hop in this cycle
   logic [31:0] x_rows;  // transfer: rows completed by the end of this cycle
   logic [31:0] x_credn;  // transfer: row credit after this cycle
+  logic [16:0] xa_now;  // transfer: active PEs (counted in its first cycle)
+  logic [47:0] xb_now;  // transfer: bytes still to cross at the start of this cycle
+  logic x_zn;  // a zero-cost instruction (phase; xld / xst moving nothing without setup)
   imap_pkg::fault_t x_flt;  // fault raised in this cycle (first cycle only)
   logic [31:0] x_fpe;
   logic [63:0] x_fad;
@@ -364,6 +371,11 @@ module imap_cp
     x_last = 1'b0;
     x_rows = x_rdone;
     x_credn = x_cred;
+    // the transfer counts the active PEs in its first cycle (a mask command
+    // just before it has its count on the mask bus now: red_count)
+    xa_now = x_first ? (`IMAP_MUT(14) ? 17'(P) : active_now) : x_act;
+    xb_now = x_first ? 48'(x_len) * 48'(xa_now) : x_brem;
+    x_zn = x_zero || (x_kind == imap_pkg::K_XFER && !x_setup && xb_now == 48'd0);
     xc = 32'h0;
     xnr = 32'h0;
     case (x_kind)
@@ -377,20 +389,20 @@ module imap_cp
         x_last = x_step && (x_hops == 17'd1);
       end
       imap_pkg::K_XFER: begin
-        if (x_zero) x_last = 1'b1;
-        else if (x_setup) x_last = (x_cnt == 32'd0) && (x_brem == 48'd0);
+        if (x_zn) x_last = 1'b1;
+        else if (x_setup) x_last = (x_cnt == 32'd0) && (xb_now == 48'd0);
         else begin
           // data cycle: c_ext_bpc bytes cross the path; a row is complete
-          // when all P of its bytes have crossed
+          // when the bytes of all active PEs have crossed
           xc = x_cred + c_ext_bpc;
           xnr = 32'd0;
           for (int i = 0; i < XROWS; i++)
-            if (xc >= 32'(P)) begin
-              xc = xc - 32'(P);
+            if (xc >= 32'(xa_now)) begin
+              xc = xc - 32'(xa_now);
               xnr = xnr + 32'd1;
             end
           x_credn = xc;
-          x_last = (x_brem <= 48'(c_ext_bpc));
+          x_last = (xb_now <= 48'(c_ext_bpc));
           x_rows = x_last ? x_len : x_rdone + xnr;
           if (x_last && x_len != 32'd0 && ((`IMAP_MUT(4) && !x_xst) || (`IMAP_MUT(12) && x_xst)))
             x_rows = x_len - 32'd1;
@@ -434,7 +446,7 @@ module imap_cp
     else if (bub != 32'd0) x_free = (bub == 32'd1);
     else x_free = 1'b1;
     d_adv = d_v && x_free;
-    count_now = run_q && ((x_v && !x_zero && !(x_first && x_flt != imap_pkg::FLT_NONE)) || bub != 32'd0);
+    count_now = run_q && ((x_v && !x_zn && !(x_first && x_flt != imap_pkg::FLT_NONE)) || bub != 32'd0);
     case (x_op)
       imap_pkg::OP_MIF: msp_next = msp + 9'd1;
       imap_pkg::OP_MEND: msp_next = msp - 9'd1;
@@ -550,7 +562,8 @@ module imap_cp
     cw.step = x_v && x_step;
     cw.sbits = sb;
     cw.row = imap_pkg::ROW_NONE;
-    cw.nrows = 3'd0;
+    cw.nrows = 4'd0;
+    cw.rowm = 1'b0;
     cw.pre = imap_pkg::PRE_NONE;
     cw.pre_nohi = d_imm[29];
     cwx.pre_ra = d_ra[5:0];
@@ -561,7 +574,7 @@ module imap_cp
     xe_prow = d_ca;
     xe_wr = 1'b0;
     xe_wrow = x_ebase + x_rdone;
-    xe_n = 3'(x_rows - x_rdone);
+    xe_n = 4'(x_rows - x_rdone);
     vid_open = 1'b0;
     vid_out = (d_op == imap_pkg::OP_VOUT);
     vid_oport = d_rd[0];
@@ -576,13 +589,14 @@ module imap_cp
     if (x_v && run_q && !(x_first && x_flt != imap_pkg::FLT_NONE)) begin
       if (x_op == imap_pkg::OP_VIN && x_commit) begin
         cw.row = imap_pkg::ROW_WRITE;
-        cw.nrows = 3'd1;
+        cw.nrows = 4'd1;
       end
       if (x_op == imap_pkg::OP_VOUT && x_commit) vid_put = 1'b1;
-      if (x_kind == imap_pkg::K_XFER && !x_zero && !x_setup) begin
+      if (x_kind == imap_pkg::K_XFER && !x_zn && !x_setup) begin
         if (!x_xst) begin
           cw.row = (x_rows != x_rdone) ? imap_pkg::ROW_WRITE : imap_pkg::ROW_NONE;
-          cw.nrows = 3'(x_rows - x_rdone);
+          cw.rowm = 1'b1;
+          cw.nrows = 4'(x_rows - x_rdone);
           cwx.addr = 20'(x_addr + x_rdone);
           xe_pf = (x_rows != x_rdone) && !x_last;
           xe_prow = x_ebase + x_rows;
@@ -617,7 +631,7 @@ module imap_cp
     ev_phase = phase_q;
     ev_pe = x_v && (x_kind == imap_pkg::K_ALU || x_kind == imap_pkg::K_MINMAX || x_kind == imap_pkg::K_SHIFT ||
                     x_kind == imap_pkg::K_MEM || x_kind == imap_pkg::K_MEMX || x_kind == imap_pkg::K_RING);
-    ev_active = m_dirty ? active_n : m_active;
+    ev_active = active_now;
     ev_retire = x_commit;
     ev_op = x_op;
 
@@ -831,13 +845,15 @@ module imap_cp
             end else x_hcyc <= x_hcyc - 32'd1;
           end
           imap_pkg::K_XFER: begin
+            x_act <= xa_now;
             if (x_setup) begin
+              x_brem <= xb_now;
               if (x_cnt == 32'd0) x_setup <= 1'b0;
               else x_cnt <= x_cnt - 32'd1;
             end else begin
               x_cred <= x_credn;
               x_rdone <= x_rows;
-              x_brem <= x_last ? 48'd0 : x_brem - 48'(c_ext_bpc);
+              x_brem <= x_last ? 48'd0 : xb_now - 48'(c_ext_bpc);
             end
           end
           default: if (x_cnt != 32'd0) x_cnt <= x_cnt - 32'd1;
@@ -898,7 +914,7 @@ module imap_cp
         x_hcyc <= c_ring_hop;
         // transfer engine
         x_setup <= (c_xfer_setup != 32'd0);
-        x_brem <= 48'(d_cd) * 48'(P);
+        x_brem <= 48'd0;  // counted in the first cycle (xb_now)
         x_cred <= 32'd0;
         x_rdone <= 32'd0;
         x_ebase <= d_ca;

@@ -24,7 +24,7 @@ module imap_pe
     parameter int NREGS = 16,
     parameter int MEM_BYTES = 1024,
     parameter int MASK_DEPTH = 8,
-    parameter int XROWS = 4
+    parameter int XROWS = 8
 ) (
     input logic clk,
 `ifdef IMAP_MUTANTS
@@ -66,7 +66,7 @@ module imap_pe
   imap_pkg::cwx_t wx;
   logic [7:0] a, b, res, lo, hi, mval;
   logic [8:0] sum;
-  logic cn, tn, mn, act, wb, mwe, oob;
+  logic cn, tn, mn, act, wb, mwe, oob, rw;
   logic [2:0] s;
   logic [AW-1:0] ma, pa, d;
   logic [33:0] xa;
@@ -80,7 +80,7 @@ module imap_pe
     wx = cwx;
     {a, b, res, lo, hi, mval} = '0;
     sum = '0;
-    {cn, tn, mn, act, wb, mwe, oob} = '0;
+    {cn, tn, mn, act, wb, mwe, oob, rw} = '0;
     s = '0;
     {ma, pa, d} = '0;
     xa = '0;
@@ -221,10 +221,11 @@ module imap_pe
         st_q <= {st_q[SOOB], tn, mn};
       end
 
-      // ---- 4. row bus: rows written (vin, xld), regardless of the mask
-      if (w.row == imap_pkg::ROW_WRITE)
+      // ---- 4. row bus: rows written (vin on every PE, xld on the active PEs)
+      rw = (w.row == imap_pkg::ROW_WRITE) && (!w.rowm || st_q[SM] || `IMAP_MUT(13));
+      if (rw)
         for (int i = 0; i < XROWS; i++)
-          if (3'(i) < w.nrows) begin
+          if (4'(i) < w.nrows) begin
             mem[wx.addr[AW-1:0]+AW'(i)] = row_in[i*8+:8];
           end
 
@@ -235,7 +236,7 @@ module imap_pe
         for (int i = 0; i < XROWS; i++) begin
           d = (pa + AW'(i)) - wx.addr[AW-1:0];  // row of this edge's row writes
           if (mwe && ma == pa + AW'(i)) prow[i*8+:8] = mval;
-          else if (w.row == imap_pkg::ROW_WRITE && d < AW'(w.nrows)) prow[i*8+:8] = row_in[d*8+:8];
+          else if (rw && d < AW'(w.nrows)) prow[i*8+:8] = row_in[d*8+:8];
         end
         row_q <= prow;
         case (w.pre)

@@ -95,7 +95,8 @@ package imap_pkg;
     logic       up;      // ring direction: 1 = rxl (data to higher PE indices)
     logic [2:0] sbits;   // shifter bits per pass (cost table shift_bits)
     row_t       row;     // row bus operation in this cycle
-    logic [2:0] nrows;   // rows written in this cycle (ROW_WRITE)
+    logic [3:0] nrows;   // rows written in this cycle (ROW_WRITE)
+    logic       rowm;    // the row write is masked (xld: active PEs only; vin: all PEs)
     pre_t       pre;     // preload for the instruction entering execute at this edge
     logic       pre_nohi;  // ldx / stx without a high-byte register
   } cw_t;

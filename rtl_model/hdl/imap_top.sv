@@ -16,7 +16,7 @@ module imap_top
     parameter int MASK_DEPTH = 8,  // mask stack (at least mask_depth)
     parameter int CALL_DEPTH = 16,  // return stack (at least call_depth)
     parameter int IMEM_WORDS = 65536,  // instruction memory
-    parameter int XROWS = 4,  // rows per cycle of the transfer path (ext_bytes_per_cycle <= XROWS * P)
+    parameter int XROWS = 8,  // rows per cycle of the transfer path (ext_bytes_per_cycle <= XROWS)
     parameter int PHASES = 256  // per-phase cycle counters
 ) (
     input logic clk,
@@ -56,7 +56,8 @@ module imap_top
     output logic [31:0] xe_prow,
     output logic xe_wr,
     output logic [31:0] xe_wrow,
-    output logic [2:0] xe_n,
+    output logic [3:0] xe_n,
+    output logic [P-1:0] xe_pm,  // the PEs' M bits (xst writes the active PEs' bytes)
     output logic [XROWS*8-1:0] rrow[P],
     input logic [P*XROWS*8-1:0] rbus,  // row bus: PE p reads slice p
     // board: video line port (vid_open when vin / vout enters execute, the

@@ -6,7 +6,8 @@
 // stage; this module moves the rows it names:
 //   xe_pf  prefetch ext rows [xe_prow, xe_prow + XROWS) onto the row bus for
 //          the PEs (xld; the external memory does not change during xld)
-//   xe_wr  write xe_n ext rows [xe_wrow, ..) from the PEs' row read ports (xst)
+//   xe_wr  write xe_n ext rows [xe_wrow, ..) from the row read ports of the
+//          PEs with M = 1 (xe_pm; xst)
 // A prefetch at the edge of a write sees the written rows (bypass).
 // The video port is the testbench's camera / display model (DPI): vid_open checks the line when vin / vout enters execute and, for
 // vin, loads the line onto lane 0 of the row bus; vid_put sends the PEs'
@@ -16,14 +17,15 @@ module imap_board
 #(
     parameter int P = 8,
     parameter int EXT_BYTES = 65536,
-    parameter int XROWS = 4
+    parameter int XROWS = 8
 ) (
     input logic clk,
     input logic xe_pf,
     input logic [31:0] xe_prow,
     input logic xe_wr,
     input logic [31:0] xe_wrow,
-    input logic [2:0] xe_n,
+    input logic [3:0] xe_n,
+    input logic [P-1:0] xe_pm,
     input logic vid_open,
     input logic vid_out,
     input logic [0:0] vid_oport,
@@ -54,7 +56,7 @@ module imap_board
       for (int i = 0; i < XROWS; i++)
         if (i < int'(xe_n) && xe_wrow + 32'(i) < 32'(EXT_BYTES))
           for (int p = 0; p < P; p++) begin
-            ext[(xe_wrow+32'(i))*32'(P)+32'(p)] = rrow[p][i*8+:8];
+            if (xe_pm[p]) ext[(xe_wrow+32'(i))*32'(P)+32'(p)] = rrow[p][i*8+:8];
           end
     if (xe_pf) begin
       for (int i = 0; i < XROWS; i++) begin

@@ -28,16 +28,14 @@ module imap_cp_monitor (
     input logic [31:0] x_addr,
     input logic [31:0] creg[16],
     input logic [63:0] x_cyc0,
-    input logic x_zero,
+    input logic x_zn,
     input logic [15:0] phase_q,
     input logic x_cwe,
     input logic [3:0] x_cidx,
     input logic [31:0] x_cres,
     input logic [8:0] msp_next,
     input logic [8:0] csp_next,
-    input logic m_dirty,
-    input logic [16:0] active_n,
-    input logic [16:0] m_active
+    input logic [16:0] ev_active
 );
   import imap_dpi_pkg::*;
 
@@ -48,10 +46,10 @@ module imap_cp_monitor (
       if (x_commit && cfg_trace) begin
         if (x_op == imap_pkg::OP_CST) imap_rtl_param_write(int'(x_addr[7:0]), int'(creg[x_ir[11:8]]));
         imap_rtl_retire(
-            instret, int'(x_pc), x_ir, x_cyc0, x_zero ? mcycle : mcycle + 64'd1,
+            instret, int'(x_pc), x_ir, x_cyc0, x_zn ? mcycle : mcycle + 64'd1,
             {16'h0, (x_op == imap_pkg::OP_PHASE) ? x_ir[47:32] : phase_q}, x_cwe ? int'(x_cidx) : -1,
             int'(x_cres), int'(msp_next), int'(csp_next),
-            {15'h0, m_dirty ? active_n : m_active}, x_op == imap_pkg::OP_HALT);
+            {15'h0, ev_active}, x_op == imap_pkg::OP_HALT);
       end
     end
 

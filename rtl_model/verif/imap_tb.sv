@@ -15,7 +15,7 @@ module imap_tb
     parameter int MASK_DEPTH = 8,
     parameter int CALL_DEPTH = 16,
     parameter int IMEM_WORDS = 65536,
-    parameter int XROWS = 4,
+    parameter int XROWS = 8,
     parameter int PHASES = 256
 ) (
     input logic clk,
@@ -54,7 +54,8 @@ module imap_tb
   // the chip's board interface
   logic xe_pf, xe_wr, vid_open, vid_out, vid_put;
   logic [31:0] xe_prow, xe_wrow, vid_oy, vid_ox, vid_py, vid_px;
-  logic [2:0] xe_n;
+  logic [3:0] xe_n;
+  logic [P-1:0] xe_pm;
   logic [0:0] vid_oport, vid_pport;
   logic [1:0] vid_status;
   logic [P*XROWS*8-1:0] rbus;

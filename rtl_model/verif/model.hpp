@@ -112,7 +112,7 @@ inline constexpr int kHdlRegs = 16;
 inline constexpr int kHdlMaskDepth = 8;
 inline constexpr int kHdlCallDepth = 16;
 inline constexpr uint32_t kHdlImemWords = 65536;
-inline constexpr int kHdlXrows = 4;
+inline constexpr int kHdlXrows = 8;
 inline constexpr int kHdlPhases = 256;
 
 }  // namespace imap::rtl::detail

@@ -4,7 +4,9 @@
 //    case, and the bound never exceeds what the firmware measures;
 //  - for fixed work, more PEs never make a frame slower (16 .. 1024 PEs),
 //    also where the lines no longer fill the ring (the headline shape at
-//    256 / 512 / 1024 PEs, bidir and single);
+//    256 / 512 / 1024 PEs, bidir, single and the quality preset);
+//  - single mode's spilled pointers cost what they move, and the planner
+//    picks the cheaper of the external and the spare-PE layouts;
 //  - the DP phases cost a constant per computed slot across ROI widths and
 //    disparity ranges, and a constant per valid state where the two
 //    wavefronts' column profiles match (D <= width / 2).
@@ -24,14 +26,17 @@ struct Measured {
     fw::FrameResult r;
 };
 
-Measured run_case(const g::Params& p, int W, int H, int P) {  // NOLINT
-    std::mt19937 rng(uint32_t(W * 131 + H * 7));              // the same frame at every P
+Measured run_case(const g::Params& p, int W, int H, int P,  // NOLINT
+                  fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t mem = 0,
+                  uint32_t seed = 0) {
+    std::mt19937 rng(seed ? seed : uint32_t(W * 131 + H * 7));  // the same frame at every P
     const Frame fr = random_frame(rng, W, H, p.D);
     isa::MachineConfig cfg;
     cfg.pes = uint32_t(P);
+    if (mem) cfg.mem_bytes = mem;
     const g::Roi roi{0, 0, W, H};
     Measured m;
-    m.plan = fw::plan_frame(p, roi, cfg);
+    m.plan = fw::plan_frame(p, roi, cfg, layout);
     const isa::Program prog = fw::assemble_frame(p, m.plan);
     m.r = fw::run_frame_core(m.plan, prog, g::ImageView{fr.L.data(), W, H, W},
                              g::ImageView{fr.R.data(), W, H, W}, cfg);
@@ -109,10 +114,12 @@ BOOST_AUTO_TEST_CASE(census_frames_relayout_never_grows_with_the_pes) {
     // count whose lines fill the ring (256) the skewed rows serve census
     // frames too, so the re-layout does not grow with P; the bound counts
     // the codes as needed bytes and never exceeds what the firmware measures.
-    // (The frame as a whole still grows from 512 PEs on: joint mode's
-    // spilled pointers cross the shared external path, docs/whatif.md.)
+    // The frame as a whole is non-increasing too: joint mode spills pointers
+    // to the external memory, and the transfers move the bytes of the PEs
+    // holding a line only (docs/isa.md, xld / xst), so the spill phase is
+    // the same at every P.
     g::Params p = g::preset("quality");
-    uint64_t prev_rl = UINT64_MAX;
+    uint64_t prev_rl = UINT64_MAX, prev = UINT64_MAX, spill0 = 0;
     for (int P : {256, 512, 1024}) {
         const Measured m = run_case(p, 128, 128, P);
         const uint64_t rl = m.r.relayout_in + m.r.relayout_out;
@@ -121,11 +128,16 @@ BOOST_AUTO_TEST_CASE(census_frames_relayout_never_grows_with_the_pes) {
                            << m.r.relayout_bound_in << ", out " << m.r.relayout_out << ", spill "
                            << phase(m.r, "spill") << ")");
         BOOST_TEST(rl <= prev_rl, "P=" << P << ": re-layout " << rl << " > " << prev_rl);
+        BOOST_TEST(m.r.cycles <= prev, "P=" << P << ": " << m.r.cycles << " > " << prev);
+        if (spill0 == 0) spill0 = phase(m.r, "spill");
+        BOOST_TEST(spill0 > 0u);
+        BOOST_TEST(phase(m.r, "spill") == spill0);
         BOOST_TEST(m.r.relayout_bound_in <= int64_t(m.r.relayout_in));
         BOOST_TEST(m.r.relayout_bound_out <= int64_t(m.r.relayout_out));
         BOOST_TEST(m.r.relayout_in <= uint64_t(4 * m.r.relayout_bound_in));
         BOOST_TEST(m.plan.rl.skew == (P > 256));
         prev_rl = rl;
+        prev = m.r.cycles;
     }
 }
 
@@ -134,10 +146,10 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_the_headline_down) {
     // lines and fill the ring in bidir mode, 512 and 1024 do not (128 PEs
     // hold them in single mode). Both modes: the frame time is
     // non-increasing. Single mode spills 704 B of pointers per PE: to the
-    // external memory up to 256 PEs, whose transfers move every PE's bytes
-    // over the one shared path (docs/isa.md, xfer), and from 512 PEs on into
-    // the spare PE beside each line's PE (docs/firmware.md, section 3), which
-    // does not grow with P. The re-layout is non-increasing too, except at
+    // external memory up to 256 PEs, whose transfers move the bytes of the
+    // PEs holding a line over the one shared path (docs/isa.md, xld / xst),
+    // and from 512 PEs on into the spare PE beside each line's PE
+    // (docs/firmware.md, section 3), cheaper still. The re-layout is non-increasing too, except at
     // the switch to the spare layout, where the skewed rounds compute the row
     // index as q / 2 (one more instruction per round in and out: 2 x 128).
     for (const g::Mode mode : {g::Mode::Bidir, g::Mode::Single}) {
@@ -166,69 +178,94 @@ BOOST_AUTO_TEST_CASE(more_pes_never_slow_the_headline_down) {
     }
 }
 
-BOOST_AUTO_TEST_CASE(single_mode_keeps_spilled_pointers_on_chip) {
-    // Single mode, pointers that do not fit: with a spare PE beside every
-    // line's PE the spilled columns go over one ring hop into the spare's
-    // memory (no external bytes), bit-exact (run_case), and the spill phase
-    // does not grow with P; without spares (256 PEs hold 128 lines and the
-    // skewed rows of the spare layout do not fit) they go to the external
-    // memory as before.
+BOOST_AUTO_TEST_CASE(single_mode_spills_cost_what_they_move) {
+    // Single mode, pointers that do not fit (704 bytes per PE spill at the
+    // headline shape). The external transfers move the bytes of the 128 PEs
+    // holding a line only, so the spill phase is the same at 256, 512 and
+    // 1024 PEs. With a spare PE beside every line's PE (512 and 1024 PEs)
+    // the spilled columns go over one ring hop into the spare's memory
+    // instead: about 3 cycles per byte each way plus the mask set-up,
+    // against 128 lines / 8 bytes per cycle = 16 cycles per byte each way on
+    // the external path, so the planner takes the spare layout there.
     g::Params p;  // D = 64, vote on
     p.mode = g::Mode::Single;
-    const Measured ext = run_case(p, 128, 128, 256);
-    BOOST_TEST(!ext.plan.spare);
-    BOOST_TEST(ext.plan.ext_needed == 704);
+    const Measured ext256 = run_case(p, 128, 128, 256);
+    BOOST_TEST(!ext256.plan.spare);
+    BOOST_TEST(ext256.plan.ext_needed == 704);
+    const uint64_t ext_spill = phase(ext256.r, "spill");
+    BOOST_TEST(ext_spill > 0u);
     uint64_t first = 0;
     for (int P : {512, 1024}) {
         const Measured m = run_case(p, 128, 128, P);
+        const Measured x = run_case(p, 128, 128, P, fw::SpillLayout::External);
         const uint64_t spill = phase(m.r, "spill");
-        BOOST_TEST_MESSAGE("single 128x128 D=64 P=" << P << ": " << m.r.cycles << ", spill "
-                                                    << spill << " (external at 256: "
-                                                    << phase(ext.r, "spill") << ")");
+        BOOST_TEST_MESSAGE("single 128x128 D=64 P=" << P << ": spare " << m.r.cycles << " (spill "
+                                                    << spill << "), external " << x.r.cycles
+                                                    << " (spill " << phase(x.r, "spill")
+                                                    << "), external at 256: " << ext_spill);
+        BOOST_TEST(phase(x.r, "spill") == ext_spill);  // the lines' bytes only, at any P
         BOOST_TEST(m.plan.spare);
         BOOST_TEST(m.plan.ext_needed == 0);
         BOOST_TEST(m.plan.f.ext_needed == 704);  // the same columns spill
         BOOST_TEST(spill > 0u);
-        BOOST_TEST(spill * 5 < phase(ext.r, "spill"));
+        BOOST_TEST(spill * 4 < ext_spill);
         if (first == 0) first = spill;
         BOOST_TEST(spill == first);
-        BOOST_TEST(m.r.cycles < ext.r.cycles);
+        BOOST_TEST(m.r.cycles < x.r.cycles);
+        BOOST_TEST(m.r.cycles < ext256.r.cycles);
     }
-    // Other shapes: shorter and narrower ROIs, without the vote, the left and
-    // right frames, less local memory (more columns spill).
+}
+
+BOOST_AUTO_TEST_CASE(planner_picks_the_cheaper_spill_layout) {
+    // Both layouts bit-exact on shorter and narrower ROIs, with and without
+    // the vote, the left and right frames, less local memory (more columns
+    // spill), and the planner's pick never the slower one. With few lines
+    // (H = 12..20) the external path moves few bytes and wins. With 64 lines
+    // the spare layout's spill is cheaper, but its two PEs per line also cost
+    // re-layout rounds and, with the vote, a second ring hop per backtrack
+    // step: without the vote the spare layout wins, with it (96 x 64) the
+    // external path still does.
     struct C {
         int W, H, D, P;
         bool vote;
-        int mem;
+        uint32_t mem;
         g::Frame frame;
+        bool spare_wins;
     };
-    for (const C& c : {C{96, 20, 64, 256, true, 1024, g::Frame::Cyclopean},
-                       C{64, 16, 48, 128, false, 420, g::Frame::Left},
-                       C{80, 12, 40, 128, true, 600, g::Frame::Right}}) {
+    for (const C& c : {C{96, 20, 64, 256, true, 1024, g::Frame::Cyclopean, false},
+                       C{64, 16, 48, 128, false, 420, g::Frame::Left, false},
+                       C{80, 12, 40, 128, true, 600, g::Frame::Right, false},
+                       C{96, 64, 64, 256, true, 1024, g::Frame::Cyclopean, false},
+                       C{64, 64, 48, 256, false, 420, g::Frame::Left, true},
+                       C{128, 64, 64, 256, false, 1024, g::Frame::Cyclopean, true}}) {
         g::Params q;
         q.mode = g::Mode::Single;
         q.D = c.D;
         q.vote = c.vote;
         q.frame = c.frame;
         BOOST_TEST_CONTEXT("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P) {
-            std::mt19937 rng(uint32_t(c.W * 31 + c.H));
-            const Frame fr = random_frame(rng, c.W, c.H, c.D);
-            isa::MachineConfig cfg;
-            cfg.pes = uint32_t(c.P);
-            cfg.mem_bytes = uint32_t(c.mem);
-            const g::Roi roi{0, 0, c.W, c.H};
-            const fw::FramePlan plan = fw::plan_frame(q, roi, cfg);
-            BOOST_TEST(plan.spare);
-            BOOST_TEST(plan.f.ext_needed > 0);
-            const isa::Program prog = fw::assemble_frame(q, plan);
-            const fw::FrameResult r =
-                fw::run_frame_core(plan, prog, g::ImageView{fr.L.data(), c.W, c.H, c.W},
-                                   g::ImageView{fr.R.data(), c.W, c.H, c.W}, cfg);
-            const g::DisparityMap want = g::compute(q, g::ImageView{fr.L.data(), c.W, c.H, c.W},
-                                                    g::ImageView{fr.R.data(), c.W, c.H, c.W}, roi);
-            BOOST_TEST(r.map.data == want.data);
+            const uint32_t seed = uint32_t(c.W * 31 + c.H);
+            const Measured pick = run_case(q, c.W, c.H, c.P, fw::SpillLayout::Cheaper, c.mem, seed);
+            const Measured ext = run_case(q, c.W, c.H, c.P, fw::SpillLayout::External, c.mem, seed);
+            const Measured spare = run_case(q, c.W, c.H, c.P, fw::SpillLayout::Spare, c.mem, seed);
+            BOOST_TEST_MESSAGE("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P
+                                    << ": external " << ext.r.cycles << " (spill "
+                                    << phase(ext.r, "spill") << "), spare " << spare.r.cycles
+                                    << " (spill " << phase(spare.r, "spill") << "), picked "
+                                    << (pick.plan.spare ? "spare" : "external"));
+            BOOST_TEST(ext.plan.f.ext_needed > 0);
+            BOOST_TEST(!ext.plan.spare);
+            BOOST_TEST(spare.plan.spare);
+            BOOST_TEST(spare.plan.ext_needed == 0);
+            BOOST_TEST(pick.plan.spare == c.spare_wins);
+            BOOST_TEST(pick.r.cycles == std::min(ext.r.cycles, spare.r.cycles));
         }
     }
+    // Where the spare layout does not apply, forcing it is a clear error.
+    g::Params bidir;  // the headline: bidirectional, every PE holds a line
+    isa::MachineConfig cfg;
+    BOOST_CHECK_THROW(fw::plan_frame(bidir, g::Roi{0, 0, 128, 128}, cfg, fw::SpillLayout::Spare),
+                      fw::FirmwareError);
 }
 
 BOOST_AUTO_TEST_CASE(dp_phases_scale_with_the_work) {

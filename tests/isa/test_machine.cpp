@@ -542,10 +542,14 @@ BOOST_AUTO_TEST_CASE(external_memory_block_transfer) {
         cli c3, #20          ; local base
         pidx r0, #0
         ceqi r0, #0
-        mif                  ; mask does not matter for block transfers
-          xld [c3 + 1], ext[c1], c2
-          cli c1, #40
+        xld [c3 + 1], ext[c1], c2
+        cli c1, #40
+        xst [c3 + 1], ext[c1], c2
+        mif                  ; PE 0 only: the other PEs keep their bytes
+          cli c1, #50
           xst [c3 + 1], ext[c1], c2
+          cli c1, #10
+          xld [c3 + 30], ext[c1], c2
         mend
         halt)",
                  cfg, [](Machine& m) {
@@ -558,9 +562,13 @@ BOOST_AUTO_TEST_CASE(external_memory_block_transfer) {
         for (int i = 0; i < 4; ++i) {
             BOOST_CHECK_EQUAL(m->mem_read(p, static_cast<uint32_t>(21 + i)), p * 16 + i);
             BOOST_CHECK_EQUAL(m->ext_read(p, static_cast<uint32_t>(40 + i)), p * 16 + i);
+            BOOST_CHECK_EQUAL(m->ext_read(p, static_cast<uint32_t>(50 + i)), p == 0 ? i : 0);
+            BOOST_CHECK_EQUAL(m->mem_read(p, static_cast<uint32_t>(50 + i)), p == 0 ? i : 0);
         }
-    // 4 PEs x 4 bytes = 16 bytes over the shared 8-byte/cycle path: 2 cycles after the setup
-    BOOST_CHECK_EQUAL(m->stats().class_cycles[static_cast<int>(CostClass::Xfer)], 2u * (8 + 2));
+    // all 4 PEs x 4 bytes = 16 bytes over the shared 8-byte/cycle path: 2 cycles after
+    // the setup; PE 0 alone: 4 bytes, 1 cycle
+    BOOST_CHECK_EQUAL(m->stats().class_cycles[static_cast<int>(CostClass::Xfer)],
+                      2u * (8 + 2) + 2u * (8 + 1));
 
     auto fault_text = [&](const std::string& src, MachineConfig c) {
         try {

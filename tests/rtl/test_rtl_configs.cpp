@@ -95,9 +95,9 @@ BOOST_AUTO_TEST_CASE(run_time_parameters_beyond_the_hdl) {
     cfg.call_depth = 17;
     BOOST_CHECK(refusal(cfg).find("call_depth = 17") != std::string::npos);
     cfg.call_depth = 8;
-    cfg.costs.ext_bytes_per_cycle = 33;  // > 4 rows x 8 PEs
-    BOOST_CHECK(refusal(cfg).find("ext_bytes_per_cycle = 33") != std::string::npos);
-    cfg.costs.ext_bytes_per_cycle = 32;
+    cfg.costs.ext_bytes_per_cycle = 9;  // > 8 rows of one byte (one PE active)
+    BOOST_CHECK(refusal(cfg).find("ext_bytes_per_cycle = 9") != std::string::npos);
+    cfg.costs.ext_bytes_per_cycle = 8;
     BOOST_CHECK_EQUAL(refusal(cfg), "");
     BOOST_CHECK_THROW(rtl::check_runnable(cfg, false, false, 70000), isa::ConfigError);
 }

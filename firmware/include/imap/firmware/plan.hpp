@@ -195,11 +195,17 @@ struct FramePlan {
 
 inline constexpr int kMaxBatches = 62;  // batch table in the param block
 
+// Where single mode's spilled pointer columns go (docs/firmware.md,
+// section 3): Cheaper picks the spare layout where it is feasible and its
+// cost estimate beats the external path's; External never uses spares;
+// Spare forces the spare layout (FirmwareError where it is not feasible).
+enum class SpillLayout { Cheaper, External, Spare };
+
 // Plans a frame: the forward plan, batches (overlapping by one line at inner
 // edges when the vote is on), video rows, memory, re-layout. FirmwareError
 // when the set cannot run on `cfg` (what is needed vs available).
-FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi,
-                     const isa::MachineConfig& cfg);
+FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
+                     SpillLayout layout = SpillLayout::Cheaper);
 
 // Lower bound of the re-layout's ring cycles of a frame plan (docs/firmware.md,
 // section 5): per batch and segment the larger of the byte-hop bound (every

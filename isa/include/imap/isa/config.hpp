@@ -69,9 +69,9 @@ struct CostTable {
     uint64_t shift_cycles(unsigned n) const {
         return uint64_t{alu} + (n == 0 ? 0 : (n + shift_bits - 1) / shift_bits - 1);
     }
-    // xld / xst of len bytes per PE on P PEs: the whole array's bytes share one path.
-    uint64_t xfer_cycles(uint64_t len, uint64_t P) const {
-        return uint64_t{xfer_setup} + (len * P + ext_bytes_per_cycle - 1) / ext_bytes_per_cycle;
+    // xld / xst of len bytes per PE on A active PEs: their bytes share one path.
+    uint64_t xfer_cycles(uint64_t len, uint64_t A) const {
+        return uint64_t{xfer_setup} + (len * A + ext_bytes_per_cycle - 1) / ext_bytes_per_cycle;
     }
 };
 
