@@ -19,6 +19,7 @@ PACKAGES=(
   munge                   # Slurm authentication (the private test cluster runs its own munged)
   slurmctld slurmd        # Slurm 22.05 controller and node daemons (CTest engine.slurm, docs/cluster.md)
   slurm-client            # sbatch, squeue, scancel, sacct: the Slurm executor
+  gtkwave xvfb xauth      # every generated view loaded in GTKWave, headless (CTest waves.gtkwave_views)
 )
 
 missing=()

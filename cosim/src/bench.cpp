@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 namespace imap::rtl::detail {
@@ -177,11 +178,16 @@ void Bench::run_job(Slot& s, Job& j, bool replay) {
     wait(p.clk.posedge_event());
     wait(p.clk.posedge_event());
     // run
+    // The waves' time axis starts where the machine does (reset released,
+    // cycle 0), not at the program load before it: the TLM's waves start
+    // there too, so a window lines up in both (docs/waves.md).
+    run_start_ps_ = sc_core::sc_time_stamp().value();
+    dumps_ = 0;
     if (!j.waves_path.empty() && j.waves_t0 == 0) {
         s.model->trace_open(j.waves_path + ".part", j.waves_scopes);
         waves_on_ = true;
         j.waves_written = true;
-        j.waves_open_ps = sc_core::sc_time_stamp().value();
+        j.waves_open_ps = 0;
     }
     const auto t0 = std::chrono::steady_clock::now();
     const uint64_t c0 = clocks_;
@@ -209,6 +215,19 @@ void Bench::run_job(Slot& s, Job& j, bool replay) {
     if (waves_on_) {
         s.model->trace_close();
         waves_on_ = false;
+    }
+    // A window that starts after the end of the run: a valid trace of one
+    // sample (the final state) at the end, as the TLM's empty trace is
+    // valid; the caller warns that it is empty.
+    if (!j.waves_path.empty() && !j.waves_written && j.error.empty() &&
+        s.model->trace_format() != TraceFormat::None) {
+        const uint64_t now = sc_core::sc_time_stamp().value();
+        s.model->trace_open(j.waves_path + ".part", j.waves_scopes);
+        s.model->trace_dump(now > run_start_ps_ ? now - run_start_ps_ : 0);
+        s.model->trace_close();
+        j.waves_written = true;
+        j.waves_empty = true;
+        j.waves_open_ps = now > run_start_ps_ ? now - run_start_ps_ : 0;
     }
     // the design stays halted (not reset) until the next job: its final
     // state is read after the simulation
@@ -316,17 +335,29 @@ void Bench::clock() {
     const uint64_t now = sc_core::sc_time_stamp().value();  // ps
     if (job_ && !job_->waves_path.empty() && s.model->trace_format() != TraceFormat::None) {
         const uint64_t mc = *s.bd.mcycle;
+        // the edge just evaluated, on the waves' time axis (0 = reset released)
+        const uint64_t edge = now > half_ps_ ? now - half_ps_ : 0;
+        const uint64_t t = edge > run_start_ps_ ? edge - run_start_ps_ : 0;
         if (!waves_on_ && mc >= job_->waves_t0 && s.ports->rst_n.read() && !job_->waves_written) {
             s.model->trace_open(job_->waves_path + ".part", job_->waves_scopes);
             waves_on_ = true;
             job_->waves_written = true;
-            job_->waves_open_ps = now;
+            job_->waves_open_ps = t;
         }
         if (waves_on_) {
-            s.model->trace_dump(now > half_ps_ ? now - half_ps_ : 0);
-            if (mc > job_->waves_t1) {
+            s.model->trace_dump(t);
+            // --trace-limit-mb: the file's size, every 256 dumps (the FST
+            // writer buffers, so it stops at about the limit)
+            bool limit = false;
+            if (job_->waves_limit_bytes && (++dumps_ & 255u) == 0) {
+                std::error_code ec;
+                const auto size = std::filesystem::file_size(job_->waves_path + ".part", ec);
+                limit = !ec && size > job_->waves_limit_bytes;
+            }
+            if (mc > job_->waves_t1 || limit) {
                 s.model->trace_close();
                 waves_on_ = false;
+                job_->waves_limited = limit;
             }
         }
     }

@@ -136,6 +136,7 @@ struct Job {
     std::string waves_path;
     std::vector<std::string> waves_scopes;  // dumpvars prefixes (empty = all)
     uint64_t waves_t0 = 0, waves_t1 = UINT64_MAX;
+    uint64_t waves_limit_bytes = 0;  // stop tracing beyond this file size (0: no limit)
     // results
     bool halted = false, stopped = false;
     FaultRecord fault;
@@ -143,7 +144,10 @@ struct Job {
     std::string error;  // testbench-level failure (model stopped making progress, ...)
     double wall_s = 0;
     bool waves_written = false;
-    uint64_t waves_open_ps = 0;  // simulation time of the first dump
+    bool waves_empty = false;    // the window held no cycle of the run: one sample at its end
+    bool waves_limited = false;  // stopped at waves_limit_bytes
+    uint64_t waves_open_ps = 0;  // time of the first dump (the waves' time axis: 0 = reset
+                                 // released, the machine's cycle 0, as in the TLM's waves)
 };
 
 class Bench : public sc_core::sc_module {
@@ -219,6 +223,8 @@ class Bench : public sc_core::sc_module {
     uint64_t last_progress_ = 0, last_mcycle_ = 0, last_instret_ = 0;
     uint64_t cycle_budget_ = UINT64_MAX;
     bool waves_on_ = false;
+    uint64_t run_start_ps_ = 0;  // simulation time at which the job's reset was released
+    uint64_t dumps_ = 0;         // trace dumps of the job (the size limit is checked every 256)
     sc_core::sc_event clock_ev_, finished_ev_, processed_ev_;
 };
 

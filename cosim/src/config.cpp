@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 #include <string>
 
@@ -228,6 +229,13 @@ std::string build_command(const isa::MachineConfig& cfg, int waves) {
         trace_list ? detail::build_trace_configs() : detail::build_extra_configs();
     const std::string list = current.empty() ? spec_of(cfg) : current + ";" + spec_of(cfg);
     const std::string bin = detail::build_binary_dir();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(detail::build_source_dir(), ec) ||
+        !std::filesystem::is_directory(bin, ec))
+        // an installed binary whose build tree is gone: name the option
+        return std::string("rebuild imapsim from its source tree with ") +
+               (trace_list ? "-DIMAP_RTL_TRACE_CONFIGS=\"" : "-DIMAP_RTL_EXTRA_CONFIGS=\"") + list +
+               "\" (docs/rtl.md)";
     return std::string("cmake -S ") + detail::build_source_dir() + " -B " + bin +
            (trace_list ? " -DIMAP_RTL_TRACE_CONFIGS=\"" : " -DIMAP_RTL_EXTRA_CONFIGS=\"") + list +
            "\" && cmake --build " + bin + " --target imapsim";

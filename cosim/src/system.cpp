@@ -79,6 +79,8 @@ RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg
     r.wall_s = j.wall_s;
     r.clocks = j.clocks;
     r.waves_written = j.waves_written;
+    r.waves_empty = j.waves_empty;
+    r.waves_limited = j.waves_limited;
     const ConfigInfo& c = b.config();
     r.configuration = std::string(c.name) + (c.mutants      ? " (mutation check)"
                                              : c.trace == 1 ? " (VCD)"
@@ -155,6 +157,7 @@ void finish_waves(const Job& j, const Bench& b, const isa::MachineConfig& cfg,
     v.gtkw_path = gtkw_path(j.waves_path);
     v.top = top;
     v.pes = pes;
+    v.pes_total = cfg.pes;
     if (v.pes.empty())
         for (int p = 0; p < std::min(cfg.pes, 4); ++p) v.pes.push_back(p);
     v.nregs = cfg.pe_regs;
@@ -217,6 +220,7 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
         if (job.waves_scopes.empty()) job.waves_scopes.push_back("dut.imap_tb");
         job.waves_t0 = rcfg.waves.t0;
         job.waves_t1 = rcfg.waves.t1;
+        job.waves_limit_bytes = rcfg.waves.limit_bytes;
     }
     bool given = false;
     bench.next_job = [&]() -> Job* {

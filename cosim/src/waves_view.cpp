@@ -66,7 +66,8 @@ void write_gtkw(const WavesView& v) {
     sig(vec(cp + "cw.cmp", 2), Format::Dec, "cw.cmp");
     sig(vec(cp + "cw.mask", 2), Format::Dec, "cw.mask");
     sig(vec(cp + "cw.row", 1), Format::Dec, "cw.row");
-    sig(vec(cp + "cw.nrows", 2), Format::Dec, "cw.nrows");
+    sig(vec(cp + "cw.nrows", 3), Format::Dec, "cw.nrows");
+    sig(cp + "cw.rowm", Format::Bin, "cw.rowm");
     sig(vec(cp + "cw.pre", 1), Format::Dec, "cw.pre");
     sig(vec(cp + "cwx.addr", 19), Format::Dec, "cwx.addr");
     sig(vec(cp + "cw_pre", 31), Format::Hex, "cw_pre");
@@ -88,11 +89,17 @@ void write_gtkw(const WavesView& v) {
     sig(vec(arr + "memx_pe", 15), Format::Dec);
     g.end_group();
 
-    g.begin_group("ring links");
-    for (int p : v.pes)
-        sig(vec(arr + "ring[" + std::to_string(p) + "]", 7), Format::Hex,
-            "link PE " + std::to_string(p));
-    g.end_group();
+    // The ring links are an unpacked array of P bytes: Verilator traces
+    // arrays of at most 32 elements (--trace-max-array), so above that they
+    // are not in the waves; each PE's ring register (its group) carries the
+    // same byte one clock later.
+    if (v.pes_total <= kTraceMaxArray) {
+        g.begin_group("ring links");
+        for (int p : v.pes)
+            sig(vec(arr + "ring[" + std::to_string(p) + "]", 7), Format::Hex,
+                "link PE " + std::to_string(p));
+        g.end_group();
+    }
 
     g.begin_group("transfer engine / video port", true);
     sig(cp + "x_setup", Format::Bin, "setup");
@@ -102,7 +109,7 @@ void write_gtkw(const WavesView& v) {
     sig(vec(t + "xe_prow", 31), Format::Dec);
     sig(t + "xe_wr", Format::Bin);
     sig(vec(t + "xe_wrow", 31), Format::Dec);
-    sig(vec(t + "xe_n", 2), Format::Dec);
+    sig(vec(t + "xe_n", 3), Format::Dec);
     sig(t + "vid_open", Format::Bin);
     sig(t + "vid_put", Format::Bin);
     g.end_group();
@@ -111,7 +118,7 @@ void write_gtkw(const WavesView& v) {
     for (int p : v.pes) {
         const std::string pe = arr + "g_pe[" + std::to_string(p) + "].u_pe.";
         g.begin_group("PE " + std::to_string(p), !first);
-        sig(vec(pe + "st_q", 2), Format::Bin, "{oob,T,M}");
+        sig(vec(pe + "st_q", 2), Format::Bin, "oob/T/M");
         sig(pe + "c_q", Format::Bin, "C");
         sig(vec(pe + "a", 7), Format::Hex, "operand a");
         sig(vec(pe + "b", 7), Format::Hex, "operand b");

@@ -165,7 +165,7 @@ std::string records_csv(const std::vector<tb::FrameRecord>& rs) {
     return o.str();
 }
 
-Summary summarize(const std::vector<tb::FrameRecord>& rs) {
+Summary summarize(const std::vector<tb::FrameRecord>& rs, double camera_fps) {
     Summary s;
     s.frames = rs.size();
     double first_done = -1, last_done = 0;
@@ -188,13 +188,17 @@ Summary summarize(const std::vector<tb::FrameRecord>& rs) {
         s.mean_compute /= static_cast<double>(s.ran);
         if (s.ran > 1 && last_done > first_done)
             s.throughput_fps = 1000.0 * static_cast<double>(s.ran - 1) / (last_done - first_done);
+        if (camera_fps > 0) s.throughput_fps = std::min(s.throughput_fps, camera_fps);
         if (s.mean_compute > 0) s.capacity_fps = 1000.0 / s.mean_compute;
     }
     return s;
 }
 
 json log_json(const json& head, const std::vector<tb::FrameRecord>& rs, const std::string& state) {
-    const Summary s = summarize(rs);
+    const double fps = head.contains("timing") && head["timing"].contains("fps")
+                           ? head["timing"]["fps"].get<double>()
+                           : 0.0;
+    const Summary s = summarize(rs, fps);
     json j = head;
     j["state"] = state;  // running, complete, interrupted, stopped-by-error
     j["frames"] = json::array();
@@ -283,10 +287,11 @@ int SideBySide::finish() {
     return frames_;
 }
 
-int Outcome::exit_code() const {
+int Outcome::exit_code(bool fail_on_deadline) const {
     if (result.interrupted) return kExitInterrupted;
     if (summary.mismatch) return kExitMismatch;
     if (summary.bad || summary.fault) return kExitItemErrors;
+    if (fail_on_deadline && summary.missed) return kExitItemErrors;
     return kExitOk;
 }
 
@@ -315,6 +320,11 @@ Outcome run(tb::FrameSource& source, tb::StreamSetup setup, const Outputs& out, 
                 char name[32];
                 std::snprintf(name, sizeof name, "disp_%04d.png", r.index);
                 v::write_image_atomic((fs::path(out.out_dir) / name).string(), f.disparity);
+                if (out.out_color) {
+                    std::snprintf(name, sizeof name, "disp_%04d_color.png", r.index);
+                    v::write_image_atomic((fs::path(out.out_dir) / name).string(),
+                                          v::colorize_disparity(f.disparity, setup.params.D));
+                }
             }
             if (video) video->add(f.left, f.disparity);
         }
@@ -331,7 +341,7 @@ Outcome run(tb::FrameSource& source, tb::StreamSetup setup, const Outputs& out, 
                                      : "complete";
     write_logs(o.state.c_str());
     if (video) o.video_frames = video->finish();
-    o.summary = summarize(o.records);
+    o.summary = summarize(o.records, setup.timing.fps);
     return o;
 }
 

@@ -855,10 +855,27 @@ std::pair<std::string, double> driver(const RunResult& a, const RunResult& b) {
     return {best, base > 0 ? delta / base : (delta > 0 ? INFINITY : 0)};
 }
 
+// An axis value in words for a plot label: "64 PEs", "80 MHz", "D = 64".
+std::string axis_value_words(const Axis& a, const std::string& v) {
+    if (a.name == "pes") return v + " PEs";
+    if (a.name == "clock_mhz") return v + " MHz";
+    if (a.name == "mem_bytes" || a.name == "ext_bytes") return v + " B per PE";
+    if (a.name == "roi_size") return "ROI " + v;
+    return a.name + " = " + v;
+}
+
 std::string pct(double f) {
     if (std::isinf(f)) return "from 0";
     char b[32];
     std::snprintf(b, sizeof b, "%+.0f%%", 100.0 * f);
+    return b;
+}
+
+// "falls 43%" / "grows 12%" / "grows from 0".
+std::string change_words(double f) {
+    if (std::isinf(f)) return "grows from 0";
+    char b[48];
+    std::snprintf(b, sizeof b, "%s %.0f%%", f < 0 ? "falls" : "grows", 100.0 * std::fabs(f));
     return b;
 }
 
@@ -929,11 +946,15 @@ std::vector<Knee> find_knees(const Plan& p, const std::vector<Row>& rows, size_t
             (s.label.empty() ? std::string() : " [" + s.label + "]") + ": " +
             seg(xa, kn.x, a, k, pb, fb) + "; " + seg(kn.x, xc, k, c, pa, fa) +
             (da != dc ? "; dominant phase " + da + " -> " + dc : "; dominant phase " + dc);
-        if (pa.empty())
-            kn.label = "knee: time " + pct(c.modeled_ms / k.modeled_ms - 1.0) + " beyond " + kn.x;
-        else
-            kn.label = "knee: beyond " + kn.x + ", " + pa + " " + pct(fa) +
-                       (da != dc ? " (" + dc + " dominates)" : "");
+        // The plot's label in words: what the time does beyond the knee and
+        // which phase makes it do so.
+        const double after = c.modeled_ms / k.modeled_ms - 1.0;
+        const std::string where = "beyond " + axis_value_words(ax, kn.x);
+        const bool flat = std::fabs(after) < 0.05;
+        std::string what = flat ? "flat " + where : where + " the time " + change_words(after);
+        if (!pa.empty()) what += std::string(flat ? ":" : ",") + " " + pa + " " + change_words(fa);
+        if (da != dc) what += " (" + dc + " dominates)";
+        kn.label = what;
         out.push_back(kn);
     }
     return out;
@@ -1026,7 +1047,8 @@ json to_json(const Plan& p, const Result& r) {
                          {"slope_after", k.slope_after},
                          {"phase_before", k.phase_before},
                          {"phase_after", k.phase_after},
-                         {"explanation", k.explanation}});
+                         {"explanation", k.explanation},
+                         {"label", k.label}});
     j["knees"] = knees;
     json rows = json::array();
     for (const Row& row : r.rows) {
@@ -1099,11 +1121,13 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
         }
         const bool same_h = std::all_of(hs.begin(), hs.end(), [&](int h) { return h == hs[0]; });
         const bool same_w = std::all_of(ws.begin(), ws.end(), [&](int w) { return w == ws[0]; });
-        for (size_t i = 0; i < xv.size(); ++i)
-            xv[i] = same_h ? ws[i] : same_w ? hs[i] : static_cast<double>(ws[i]) * hs[i];
+        for (size_t i = 0; i < xv.size(); ++i) xv[i] = same_h ? ws[i] : hs[i];
+        // Sizes that differ in both: one labelled tick per size (W x H), so
+        // that 64x32 and 32x64 do not share an x.
+        categorical = !same_h && !same_w;
         f->xlabel = same_h   ? "ROI width (pixels), height " + std::to_string(hs[0])
                     : same_w ? "ROI height (lines), width " + std::to_string(ws[0])
-                             : "ROI pixels (W x H)";
+                             : "ROI size (W x H)";
     } else {
         for (size_t i = 0; i < xv.size(); ++i) {
             xv[i] = numeric_value(ax, ax.values[i]);

@@ -357,10 +357,6 @@ void check_range(const golden::Params& p) {
 
 }  // namespace
 
-std::string firmware_dir() {
-    return IMAP_FIRMWARE_DIR;
-}
-
 uint8_t ForwardPlan::pointer(int kind, int k, int j, const std::function<uint8_t(uint32_t)>& mem,
                              const std::function<uint8_t(uint32_t)>& ext) const {
     const PointerColumn& c = ptr[kind][k];
@@ -1373,12 +1369,13 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
         os << "        RELAYOUT_OUT " << g << ", " << W << ", " << smin << ", " << smax << "\n";
     }
     os << ".endm\n";
-    os << ".include \"" << firmware_dir() << "/dp.s\"\n";
+    os << ".include \"dp.s\"\n";
     return os.str();
 }
 
 isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
     isa::AsmOptions o;
+    o.files = &firmware_sources();
     return isa::assemble_string(frame_source(p, fp), firmware_dir() + "/dp_plan.s", o);
 }
 
@@ -1390,8 +1387,9 @@ isa::Program assemble_test(const golden::Params& p, const ForwardPlan& f, const 
     equ(os, "HB", lines);
     equ(os, "HROI", lines);
     dp_macros(os, f);
-    os << ".include \"" << firmware_dir() << "/" << file << "\"\n";
+    os << ".include \"" << file << "\"\n";
     isa::AsmOptions o;
+    o.files = &firmware_sources();
     return isa::assemble_string(os.str(), firmware_dir() + "/test_plan.s", o);
 }
 

@@ -62,7 +62,7 @@ void validate_for_width(const Params& p, int N) {
     const int dmax = std::min(N, kMaxLevels);
     {
         std::ostringstream hint;
-        hint << "min(N, 255) with N = " << N;
+        hint << "min(N, 255) with N = " << N << " the ROI width (the image width without --roi)";
         check_range("D", p.D, 1, dmax, hint.str());
     }
     if (p.mode == Mode::Single) return;

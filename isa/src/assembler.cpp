@@ -859,7 +859,12 @@ class Assembler {
             if (slash != std::string::npos) path = cur.substr(0, slash + 1) + path;
         }
         std::string err;
-        const auto text = read_file(path, &err);
+        std::optional<std::string> text;
+        if (opt_.files != nullptr) {
+            const auto it = opt_.files->find(path);
+            if (it != opt_.files->end()) text = it->second;
+        }
+        if (!text) text = read_file(path, &err);
         if (!text) {
             error(L, path_tok.col, "cannot open include file '" + path + "': " + err);
             return;
@@ -1211,7 +1216,12 @@ class Assembler {
     }
 
     bool brackets(const Line& L, const std::vector<Token>& t, Range r, Range* in) {
-        if (!t[r.b].is("[") || !t[r.e - 1].is("]") || r.e - r.b < 2) {
+        if (t[r.b].is("[") && !t[r.e - 1].is("]")) {
+            error(L, t[r.e - 1].col + static_cast<int>(t[r.e - 1].text.size()),
+                  "missing ']' at the end of the memory operand");
+            return false;
+        }
+        if (!t[r.b].is("[") || r.e - r.b < 2) {
             error(L, t[r.b].col, "expected a memory operand '[...]'");
             return false;
         }
@@ -1397,7 +1407,17 @@ class Assembler {
         const size_t idx = emit(L, Word{static_cast<uint8_t>(info.op)});
         uint8_t x = 0;
         auto pe = [&](int i, int field) {
-            if (reg(L, t, ops[static_cast<size_t>(i)], false, &x)) set_field(idx, field, x);
+            const Range& r = ops[static_cast<size_t>(i)];
+            const OpInfo* imm_form = op_by_name(mn + "i");
+            if (t[r.b].is("#") && imm_form != nullptr) {
+                // an immediate where the register form wants a register
+                error(L, t[r.b].col,
+                      "expected a PE register (r0..r63), got an immediate: for an immediate "
+                      "operand use " +
+                          mn + "i (" + mn + "i " + operand_syntax(imm_form->format) + ")");
+                return;
+            }
+            if (reg(L, t, r, false, &x)) set_field(idx, field, x);
         };
         auto cp = [&](int i, int field) {
             if (reg(L, t, ops[static_cast<size_t>(i)], true, &x)) set_field(idx, field, x);

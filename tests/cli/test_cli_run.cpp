@@ -187,6 +187,14 @@ BOOST_AUTO_TEST_CASE(scene_folder_gives_d_and_ground_truth_score) {
     BOOST_TEST(gt.at("bad1_nonocc").get<double>() == ej.at("nonocc").get<double>());
     BOOST_TEST(gt.at("bad1_all").get<double>() == ej.at("all").get<double>());
     BOOST_TEST(gt.at("bad1_disc").get<double>() == ej.at("disc").get<double>());
+    // Issue 32 item 7: the JSON names the map that was scored (the golden's
+    // left frame after the fill) and the one the run checked and wrote.
+    BOOST_TEST(gt.at("scored_map").at("frame") == "left");
+    BOOST_TEST(gt.at("scored_map").at("fill") == true);
+    BOOST_TEST(gt.at("output_map").at("frame") == "cyc");
+    BOOST_TEST(gt.at("output_map").at("fill") == false);
+    BOOST_TEST(r.out.find("the model's map and --out are the cyc frame, unfilled") !=
+               std::string::npos);
 
     // --left/--right of a scene folder without --D: a note names the scene's D.
     const Result l = run("run --model core " + scene("tsukuba") + " --roi 100,100,64,32");
@@ -259,6 +267,27 @@ BOOST_AUTO_TEST_CASE(emitted_program_and_defines_reassemble_and_exec) {
     BOOST_TEST_INFO(x.out);
     BOOST_REQUIRE(x.code == 0);
     BOOST_TEST((slurp(exec_map) == slurp(map)));  // PNG bytes: same pixels, same encoder
+
+    // Issue 32 item 10: the emitted source assembles anywhere (the firmware
+    // is inlined, no .include of the source tree), and exec of the source
+    // itself runs it: moved to a folder of its own, the same map.
+    BOOST_TEST(text.find(".include \"/") == std::string::npos, "no .include of an absolute path");
+    BOOST_TEST(text.find("; ---- dp.s (inlined from firmware/asm/dp.s)") != std::string::npos);
+    const fs::path moved = d / "elsewhere";
+    fs::create_directories(moved);
+    fs::copy_file(inc, moved / "frame.inc");
+    std::string src_cmd = cmd;
+    const size_t bp = src_cmd.find(edited);
+    BOOST_REQUIRE(bp != std::string::npos);
+    src_cmd.replace(bp, edited.size(), "frame.inc");
+    const std::string src_map = (d / "src.png").string();
+    const size_t mp = src_cmd.find(exec_map);
+    BOOST_REQUIRE(mp != std::string::npos);
+    src_cmd.replace(mp, exec_map.size(), src_map);
+    const Result xs = run("exec " + src_cmd + " --model core", moved.string());
+    BOOST_TEST_INFO(xs.out);
+    BOOST_REQUIRE(xs.code == 0);
+    BOOST_TEST((slurp(src_map) == slurp(map)));
     fs::remove_all(d);
 }
 
@@ -287,5 +316,53 @@ BOOST_AUTO_TEST_CASE(outputs_checked_first_and_colour_map) {
     BOOST_TEST_INFO(r.out);
     BOOST_REQUIRE(r.code == 0);
     BOOST_TEST(fs::is_regular_file(col));
+    fs::remove_all(d);
+}
+
+// Issue 32 item 6: the lockstep's report has its own fields (instructions
+// retired and compared, both models' cycles) and is written on a divergence
+// too, with every field of the first divergence; the RTL's report has its
+// configuration and clocks.
+BOOST_AUTO_TEST_CASE(lockstep_and_rtl_reports_have_their_fields) {
+    const fs::path d = tmpdir();
+    const std::string base = "run --pes 8 --size 32x12 --D 6 --lockstep-waves '' ";
+    const std::string ok = (d / "ok.json").string(), bad = (d / "bad.json").string(),
+                      rtl = (d / "rtl.json").string();
+    const Result r = run(base + "--model lockstep --report " + ok);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(ok));
+    const nlohmann::json& ls = j.at("lockstep");
+    BOOST_TEST(ls.at("diverged") == false);
+    BOOST_TEST(ls.at("instructions").get<uint64_t>() > 0u);
+    BOOST_TEST(ls.at("compared").get<uint64_t>() == ls.at("instructions").get<uint64_t>());
+    BOOST_TEST(ls.at("cycles_tlm") == j.at("cycles"));
+    BOOST_TEST(ls.at("cycles_rtl") == j.at("cycles"));
+    BOOST_TEST(ls.at("rtl_configuration").get<std::string>().find("p8_") == 0u);
+
+    const Result x = run(base + "--model lockstep --inject-fault 20:3:r5:0x24 --report " + bad);
+    BOOST_TEST_INFO(x.out);
+    BOOST_TEST(x.code == 1);
+    BOOST_TEST(x.out.find("imapsim: error: ") != std::string::npos);
+    BOOST_REQUIRE(fs::exists(bad));
+    const nlohmann::json b = nlohmann::json::parse(std::ifstream(bad));
+    BOOST_TEST(b.at("model") == "lockstep");
+    BOOST_TEST(b.at("bit_exact").is_null());
+    const nlohmann::json& dv = b.at("lockstep").at("divergence");
+    BOOST_TEST(b.at("lockstep").at("diverged") == true);
+    BOOST_TEST(dv.at("pe") == 3);
+    BOOST_TEST(dv.at("instruction").get<uint64_t>() >= 20u);
+    for (const char* k :
+         {"cycle", "pc", "word", "disassembly", "what", "tlm_value", "rtl_value", "message"})
+        BOOST_TEST(dv.contains(k), k);
+    BOOST_TEST(x.out.find(dv.at("message").get<std::string>()) != std::string::npos);
+    BOOST_TEST(b.at("params").at("machine").at("pes") == 8);
+
+    const Result t = run(base + "--model rtl --report " + rtl);
+    BOOST_TEST_INFO(t.out);
+    BOOST_REQUIRE(t.code == 0);
+    const nlohmann::json rj = nlohmann::json::parse(std::ifstream(rtl));
+    BOOST_TEST(rj.at("rtl").at("clocks").get<uint64_t>() >= rj.at("cycles").get<uint64_t>());
+    BOOST_TEST(rj.at("rtl").at("configuration").get<std::string>().find("p8_") == 0u);
     fs::remove_all(d);
 }

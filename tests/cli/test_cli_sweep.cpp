@@ -320,8 +320,10 @@ BOOST_AUTO_TEST_CASE(knee_is_found_and_explained) {
         BOOST_TEST(e.find("knee at pes=") == 0u);
         BOOST_TEST(e.find(k.at("phase_after").get<std::string>()) != std::string::npos);
         BOOST_TEST(r.out.find(e) != std::string::npos);  // printed with the summary
-        // and written on the plot
-        BOOST_TEST(slurp(d / "knee.gp").find("knee: ") != std::string::npos);
+        // and written on the plot, in words (issue 32 item 15)
+        const std::string label = k.at("label").get<std::string>();
+        BOOST_TEST(label.find(" PEs") != std::string::npos, label);
+        BOOST_TEST(slurp(d / "knee.gp").find("\"" + label + "\"") != std::string::npos, label);
     } else {
         BOOST_TEST(knees.empty());
     }

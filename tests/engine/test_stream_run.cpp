@@ -4,10 +4,12 @@
 #define BOOST_TEST_MODULE engine_stream_run
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "engine_test_util.hpp"
 #include "imap/engine/stream.hpp"
 #include "imap/firmware/plan.hpp"
+#include "imap/vision/colour.hpp"
 
 namespace es = imap::engine::stream;
 namespace tb = imap::testbench;
@@ -35,7 +37,7 @@ BOOST_AUTO_TEST_CASE(three_frames_with_every_output) {
     setup.timing.resolve(16);
     const fs::path d = tmpdir();
     const es::Outputs out{d.string(), (d / "v.avi").string(), (d / "s.json").string(),
-                          (d / "s.csv").string()};
+                          (d / "s.csv").string(), true};
     std::vector<std::string> lines;
     es::Hooks hooks;
     hooks.frame = [&](const std::string& l) { lines.push_back(l); };
@@ -51,6 +53,16 @@ BOOST_AUTO_TEST_CASE(three_frames_with_every_output) {
         char name[32];
         std::snprintf(name, sizeof name, "disp_%04d.png", i);
         BOOST_TEST(fs::exists(d / name), name);
+        // --out-color: the colour map of the same disparities (issue 32 item 8)
+        std::snprintf(name, sizeof name, "disp_%04d_color.png", i);
+        BOOST_TEST_REQUIRE(fs::exists(d / name), name);
+        std::snprintf(name, sizeof name, "disp_%04d.png", i);
+        const cv::Mat grey = cv::imread((d / name).string(), cv::IMREAD_UNCHANGED);
+        std::snprintf(name, sizeof name, "disp_%04d_color.png", i);
+        const cv::Mat colour = cv::imread((d / name).string(), cv::IMREAD_COLOR);
+        BOOST_TEST(colour.channels() == 3);
+        BOOST_TEST(cv::norm(colour, imap::vision::colorize_disparity(grey, 8), cv::NORM_INF) ==
+                   0.0);
     }
     const auto j = nlohmann::json::parse(slurp(d / "s.json"));
     BOOST_TEST(j["state"] == "complete");

@@ -164,6 +164,44 @@ BOOST_AUTO_TEST_CASE(a_knee_is_found_where_the_slope_turns) {
     BOOST_REQUIRE_EQUAL(f.annotations.size(), 1u);
     BOOST_TEST(f.annotations[0].x == 64.0);
     BOOST_TEST(f.logx);
+    // ... with a label in words (issue 32 item 15): 6 ms at 64 PEs, 7.5 ms at 128
+    BOOST_TEST(k.label ==
+                   "beyond 64 PEs the time grows 25%, relayout_in grows 400% (relayout_in "
+                   "dominates)",
+               k.label);
+}
+
+BOOST_AUTO_TEST_CASE(a_flat_knee_says_flat) {
+    // Time falls to 256 PEs, then stays (one batch holds every line).
+    const V pes = {"64", "128", "256", "512", "1024"};
+    const sw::Plan p = pes_plan(pes);
+    std::vector<sw::Row> rows;
+    const double ms[] = {16, 8, 4, 4, 4};
+    for (size_t i = 0; i < pes.size(); ++i)
+        rows.push_back(
+            ran_row({pes[i]}, ms[i], {{"forward", static_cast<uint64_t>(ms[i] * 1000)}}));
+    const auto knees = sw::find_knees(p, rows, 0);
+    BOOST_REQUIRE_EQUAL(knees.size(), 1u);
+    BOOST_TEST(knees[0].label == "flat beyond 256 PEs", knees[0].label);
+}
+
+BOOST_AUTO_TEST_CASE(roi_sizes_that_differ_in_both_sides_get_a_tick_each) {
+    // 64x32 and 32x64 have the same pixel count: they must not share an x.
+    sw::Plan p;
+    p.swept = {sw::make_axis("roi_size", "--roi-size", "64x32,32x64,48x48")};
+    std::vector<sw::Row> rows = {ran_row({"64x32"}, 3, {{"forward", 1}}),
+                                 ran_row({"32x64"}, 4, {{"forward", 1}}),
+                                 ran_row({"48x48"}, 5, {{"forward", 1}})};
+    sw::Result r;
+    r.rows = rows;
+    r.x_axis = "roi_size";
+    eng::plot::Figure f;
+    BOOST_REQUIRE(sw::make_figure(p, r, 0, &f));
+    BOOST_REQUIRE_EQUAL(f.xcategories.size(), 3u);
+    BOOST_TEST(f.xcategories[0].second == "64x32");
+    BOOST_TEST(f.xcategories[1].second == "32x64");
+    BOOST_TEST(f.xcategories[0].first != f.xcategories[1].first);
+    BOOST_TEST(f.xlabel == "ROI size (W x H)");
 }
 
 BOOST_AUTO_TEST_CASE(no_knee_on_a_straight_scaling_curve) {

@@ -277,6 +277,14 @@ BOOST_AUTO_TEST_CASE(diagnostics_have_exact_positions) {
     BOOST_CHECK_EQUAL(errors("add r1, r64, r2"), "e.s:1:9: error: no register 'r64' (r0..r63)");
     BOOST_CHECK_EQUAL(errors("add r1, c2, r2"),
                       "e.s:1:9: error: expected a PE register (r0..r63), got 'c2'");
+    // an immediate on a register form names the immediate form
+    BOOST_CHECK_EQUAL(errors("add r1, r2, #1"),
+                      "e.s:1:13: error: expected a PE register (r0..r63), got an immediate: for "
+                      "an immediate operand use addi (addi rd, ra, #imm8)");
+    // a memory operand without its closing bracket says so
+    BOOST_CHECK_EQUAL(errors("ld r1, [c1 + 4"),
+                      "e.s:1:15: error: missing ']' at the end of the memory operand");
+    BOOST_CHECK_EQUAL(errors("ld r1, c1"), "e.s:1:8: error: expected a memory operand '[...]'");
     BOOST_CHECK_EQUAL(errors(".if 1\nnop\n"), "e.s:1:1: error: unterminated .if (missing .endif)");
     BOOST_CHECK_EQUAL(errors("nop\n.endif\n"), "e.s:2:1: error: .endif without .if");
     BOOST_CHECK_EQUAL(errors("li r1, @5"), "e.s:1:8: error: unexpected character '@'");

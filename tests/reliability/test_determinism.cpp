@@ -123,6 +123,12 @@ BOOST_AUTO_TEST_CASE(models_agree) {
             BOOST_TEST(r.report.at("phases") == ref.report.at("phases"));
             json j = without_wall_clock(r.report);
             j.erase("model");
+            // the RTL's own fields (its configuration and clocks), which
+            // the other models do not have
+            if (std::string(model) == "rtl") {
+                BOOST_TEST(j.at("rtl").at("cycles") == ref.report.at("cycles"));
+                j.erase("rtl");
+            }
             BOOST_TEST(j == jref, "reports equal but for the model and wall-clock fields");
         }
     }

@@ -591,6 +591,11 @@ ERROR_ROW(run_vcd_missing_folder_tlm, kInput, RUN_ON("tlm") " --vcd {o}/nosuch/w
 ERROR_ROW(run_vcd_parent_is_file_rtl, kInput,
           RUN_ON("rtl") " --vcd {in}/grey.png/w.vcd --trace-pes 0:1", "--vcd", "not a folder")
 ERROR_ROW(run_vcd_is_folder, kInput, RUN " --vcd {in}/folder.png", "--vcd", "is a folder")
+// Issue 32 item 3: an .fst name on a model that writes VCD is refused
+// before the run (it used to get VCD text under the .fst name).
+ERROR_ROW(run_fst_on_tlm, kInput, RUN_ON("tlm") " --vcd {o}/w.fst", "--vcd", "w.fst",
+          "writes VCD, not FST", ".vcd")
+ERROR_ROW(run_fst_on_core, kInput, RUN " --vcd {o}/w.fst", "--vcd", "w.fst", "writes VCD")
 ERROR_ROW(run_vcd_on_lockstep, kInput, RUN_ON("lockstep") " --vcd {o}/w.vcd", "--vcd", "lockstep")
 ERROR_ROW(run_vcd_bad_trace_pes, kInput, RUN " --vcd {o}/w.vcd --trace-pes 9:2", "--trace-pes")
 BOOST_AUTO_TEST_SUITE_END()
@@ -646,6 +651,13 @@ ERROR_ROW(stream_mem_too_small, kInput, STREAM " --mem-bytes 64", "does not fit"
 ERROR_ROW(stream_video_not_avi, kInput, STREAM " --video {o}/v.png", "--video", "v.png", ".avi")
 ERROR_ROW(stream_json_missing_folder, kInput,
           "stream --frames {in}/frames --D 8 --json {o}/nosuch/s.json", "nosuch/s.json",
+          "does not exist")
+// One rule for every output flag (issue 32 item 9): --out-dir, like a
+// file, is created only in a folder that exists.
+ERROR_ROW(stream_out_dir_missing_parent, kInput, STREAM " --out-dir {o}/nosuch/out", "--out-dir",
+          "folder", "nosuch", "does not exist")
+ERROR_ROW(synth_out_dir_missing_parent, kInput,
+          "synth --seed 1 --size 64x32 --out-dir {o}/nosuch/s", "--out-dir", "nosuch",
           "does not exist")
 ERROR_ROW(stream_out_dir_parent_is_file, kInput, STREAM " --out-dir {in}/grey.png/out", "--out-dir",
           "grey.png", "cannot create")

@@ -83,13 +83,20 @@ BOOST_AUTO_TEST_CASE(sixteen_bit_and_float_are_rejected) {
 
 BOOST_AUTO_TEST_CASE(missing_garbage_empty_and_folders_are_rejected) {
     TempDir t("io");
-    const std::string unreadable = "': cannot read (missing, unreadable or not an image)";
+    // Each message says which it is: missing, unreadable or not an image.
     BOOST_TEST(input_error([&] { v::load_grey8(t.file("nope.png"), "left image"); }) ==
-               "left image '" + t.file("nope.png") + unreadable);
+               "left image '" + t.file("nope.png") + "': cannot read (no such file)");
 
     vision_test::write_file(t.file("garbage.png"), "this is not a PNG file at all\n");
     BOOST_TEST(input_error([&] { v::load_grey8(t.file("garbage.png"), "right image"); }) ==
-               "right image '" + t.file("garbage.png") + unreadable);
+               "right image '" + t.file("garbage.png") +
+                   "': cannot read (not an image: no decoder accepts it; use PNG)");
+    if (::geteuid() != 0) {  // root reads a file without read permission
+        vision_test::write_file(t.file("locked.png"), "x");
+        std::filesystem::permissions(t.file("locked.png"), std::filesystem::perms::none);
+        const std::string l = input_error([&] { v::load_grey8(t.file("locked.png"), "mask"); });
+        BOOST_TEST(contains(l, "cannot read (Permission denied; check its permissions)"), l);
+    }
 
     // A truncated PNG: one clear message (and nothing from libpng on stderr).
     cv::Mat g(16, 16, CV_8UC1, cv::Scalar(9));

@@ -229,6 +229,63 @@ BOOST_AUTO_TEST_CASE(trace_window_past_the_end_warns) {
     fs::remove_all(d);
 }
 
+// Issue 32 items 4 and 5: the RTL behaves as the other models. A window
+// past the end gives a valid trace and the same warning, never a "->" line
+// for a file that does not exist; --trace-limit-mb stops the RTL's trace
+// too; and machine cycle c lies at the same time in both models' waves
+// (the RTL's axis starts when the reset is released, not at the program
+// load before it).
+BOOST_AUTO_TEST_CASE(rtl_waves_follow_the_same_rules_as_the_other_models) {
+    const fs::path d = tmpdir();
+    const std::string late = (d / "late_rtl.vcd").string();
+    const std::string args = " --pes 8 --size 32x16 --D 8 --trace-pes 0:1";
+    const Result r = run("run --model rtl --vcd " + late + args + " --trace-window 50000000:");
+    if (r.out.find("invalid value 'rtl' for --model") != std::string::npos) return;  // no RTL
+    BOOST_TEST_INFO(r.out);
+    BOOST_TEST(r.code == 0);
+    BOOST_TEST(r.out.find("warning: --trace-window 50000000: starts at cycle 50000000, after the "
+                          "end of the run") != std::string::npos);
+    BOOST_REQUIRE(fs::exists(late));
+    BOOST_TEST(r.out.find("waves -> " + late) != std::string::npos);
+    BOOST_TEST(vcdcheck::read_all(late).find("$enddefinitions") != std::string::npos);
+
+    // The size limit: a whole-run trace of every PE stops early (the
+    // writer buffers, so at about the limit), well short of the full trace.
+    const std::string big = (d / "big_rtl.vcd").string(), full = (d / "full_rtl.vcd").string();
+    const std::string all = " --pes 8 --size 32x16 --D 8";
+    const Result l = run("run --model rtl --vcd " + big + all + " --trace-limit-mb 0.01");
+    BOOST_TEST_INFO(l.out);
+    BOOST_TEST(l.code == 0);
+    BOOST_TEST(l.out.find("stopped at --trace-limit-mb") != std::string::npos);
+    const Result f = run("run --model rtl --vcd " + full + all);
+    BOOST_REQUIRE(f.code == 0);
+    BOOST_TEST(f.out.find("stopped at --trace-limit-mb") == std::string::npos);
+    BOOST_TEST(fs::file_size(big) * 2 < fs::file_size(full),
+               fs::file_size(big) << " B vs " << fs::file_size(full) << " B");
+    BOOST_TEST(vcdcheck::read_all(big).find("$enddefinitions") != std::string::npos);
+
+    // The same window on both models starts at the same time: VCD times
+    // in ps (RTL) and ns (ISA tracer), 25 ns per cycle at 40 MHz. The RTL's
+    // clock also ticks in zero-cost slots (phase markers), so it may lie a
+    // little later; before, it lay 215 us (the program load) later.
+    const std::string rv = (d / "w_rtl.vcd").string(), tv = (d / "w_tlm.vcd").string();
+    const std::string win = args + " --trace-window 1000:3000";
+    BOOST_REQUIRE(run("run --model rtl --vcd " + rv + win).code == 0);
+    BOOST_REQUIRE(run("run --model tlm --vcd " + tv + win).code == 0);
+    auto first_time_ps = [](const std::string& text, uint64_t unit_ps) {
+        const size_t e = text.find("$enddefinitions");
+        const size_t h = text.find("\n#", e);
+        return h == std::string::npos ? UINT64_MAX : std::stoull(text.substr(h + 2, 24)) * unit_ps;
+    };
+    const uint64_t t_rtl = first_time_ps(vcdcheck::read_all(rv), 1);
+    const uint64_t t_tlm = first_time_ps(vcdcheck::read_all(tv), 1000);
+    BOOST_TEST(t_tlm >= 1000u * 25000u);  // the first instruction issued in the window
+    BOOST_TEST(t_tlm <= 1010u * 25000u);
+    BOOST_TEST(t_rtl + 2 * 25000u >= t_tlm, t_rtl << " ps vs " << t_tlm << " ps");
+    BOOST_TEST(t_rtl <= t_tlm + 200u * 25000u, t_rtl << " ps vs " << t_tlm << " ps");
+    fs::remove_all(d);
+}
+
 // Issue 13 item 2: a .gtkw that cannot be written stops the run before it
 // starts (not after, throwing the VCD away).
 BOOST_AUTO_TEST_CASE(unwritable_gtkw_is_refused_before_the_run) {

@@ -118,18 +118,22 @@ void check_output_dir(const std::string& flag, const std::string& dir) {
     namespace fs = std::filesystem;
     if (dir.empty()) return;
     std::error_code ec;
-    // The folder itself if it exists, else its nearest existing ancestor,
-    // in which the missing folders will be created.
-    fs::path at = fs::path(dir);
-    while (!at.empty() && !fs::exists(at, ec)) {
-        const fs::path up = at.parent_path();
-        if (up == at) break;
-        at = up;
+    // The folder itself if it exists, else its parent, in which it will be
+    // created: as for an output file, the folder it goes into must exist.
+    const fs::path self(dir);
+    if (fs::exists(self, ec)) {
+        if (!fs::is_directory(self, ec))
+            throw UserError(flag + " '" + dir + "': cannot create it: '" + dir +
+                            "' is not a folder");
+        require_creatable(flag, dir, self);
+        return;
     }
-    if (!at.empty() && fs::exists(at, ec) && !fs::is_directory(at, ec))
-        throw UserError(flag + " '" + dir + "': cannot create it: '" + at.string() +
-                        "' is not a folder");
-    require_creatable(flag, dir, at);
+    const fs::path up = self.parent_path();
+    if (!up.empty() && !fs::is_directory(up, ec))
+        throw UserError(flag + " '" + dir + "': cannot create it: " +
+                        (fs::exists(up, ec) ? "'" + up.string() + "' is not a folder"
+                                            : "folder '" + up.string() + "' does not exist"));
+    require_creatable(flag, dir, up);
 }
 
 void create_output_dir(const std::string& flag, const std::string& dir) {
@@ -137,7 +141,12 @@ void create_output_dir(const std::string& flag, const std::string& dir) {
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
         throw UserError(flag + " '" + dir + "' exists and is not a folder");
-    fs::create_directories(dir, ec);
+    const fs::path up = fs::path(dir).parent_path();
+    if (!fs::exists(dir, ec) && !up.empty() && !fs::is_directory(up, ec))
+        throw UserError(flag + " '" + dir + "': cannot create it: " +
+                        (fs::exists(up, ec) ? "'" + up.string() + "' is not a folder"
+                                            : "folder '" + up.string() + "' does not exist"));
+    fs::create_directory(dir, ec);
     if (ec) throw UserError(flag + " '" + dir + "': cannot create (" + ec.message() + ")");
 }
 

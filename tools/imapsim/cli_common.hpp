@@ -106,7 +106,9 @@ void check_same_size(const std::string& left, int lw, int lh, const std::string&
 void validate_frame(const imap::golden::Params& p, const imap::golden::Roi& roi, int w, int h);
 
 // The same for an output folder (`--out-dir`): it is a folder or can be
-// created, and files can be created in it.
+// created in an existing folder (the rule of every output flag: it creates
+// the one thing it names, a file or this folder, in a folder that exists),
+// and files can be created in it.
 void check_output_dir(const std::string& flag, const std::string& dir);
 // Creates an output folder (and its missing parents); UserError naming
 // `flag` if it is a file or cannot be created.
@@ -121,6 +123,12 @@ std::string folder_of(const std::string& path);
 // True when the file `path` lies directly in folder `dir` (both taken
 // relative to the current folder; "n1.json" is in ".", "out/x" in "out/").
 bool file_in_folder(const std::string& path, const std::string& dir);
+
+// After CLI11 refused arguments it did not expect: "unknown command 'swep'
+// (did you mean sweep?)" or "unknown option --out-colour (did you mean
+// --out-color?)", from the command line and the registered names; "" when
+// no argument is unknown (the parse error says more).
+std::string explain_unknown_arguments(CLI::App& app, int argc, char** argv);
 
 // Each subcommand registers itself on the app and returns a runner that is
 // called if the subcommand was selected. The runner returns the exit code.

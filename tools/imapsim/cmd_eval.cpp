@@ -480,6 +480,11 @@ Subcommand register_eval(CLI::App& app) {
                   "x0.8+10, right x1.2-20, noise 3, noise 6, right x0.9+5 with noise 2; seed 1) "
                   "and print one line per condition with each matcher's mean nonocc");
     add_algo_flags(sub, o->algo);
+    // Scores are taken in the left frame: that is eval's default and the
+    // only frame it accepts, and its help says so.
+    o->algo.frame = "left";
+    sub->get_option("--frame")->description(
+        "output frame: left only (scenes are scored in the left frame) [default: left]");
     sub->footer(
         "--D defaults to the scene's ndisp (scenes.json). Scenes are scored over the whole "
         "image in the left frame after the fill post-step, so --roi and --frame cyc/right are "

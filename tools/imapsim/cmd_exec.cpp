@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -153,9 +155,19 @@ struct ExecResult {
     std::shared_ptr<const isa::Machine> final;  // --model tlm: the state at the end
 };
 
+// Assembler source: a name ending in .s, .asm or .inc (run --emit-defines
+// writes .inc), or a text file (no NUL byte in its first 4 KB) that does not
+// start with the program file's magic.
 bool is_source(const std::string& path) {
     const std::string ext = lower_extension(path);
-    return ext == ".s" || ext == ".asm";
+    if (ext == ".s" || ext == ".asm" || ext == ".inc") return true;
+    std::ifstream f(path, std::ios::binary);
+    char buf[4096];
+    f.read(buf, sizeof buf);
+    const std::streamsize n = f.gcount();
+    if (n <= 0) return false;  // missing or empty: the program loader says so
+    if (n >= 8 && std::memcmp(buf, "IMAPFW01", 8) == 0) return false;
+    return std::find(buf, buf + n, '\0') == buf + n;
 }
 
 // --param INDEX=VALUE: INDEX a param-block word, VALUE a 32-bit word (signed
@@ -181,8 +193,8 @@ std::vector<std::pair<int, uint32_t>> parse_params(const std::vector<std::string
 isa::Program read_program(const ExecOptions& o) {
     if (!is_source(o.program)) {
         if (!o.defines.empty())
-            throw UserError("-D applies to assembler sources (.s, .asm); '" + o.program +
-                            "' is read as a program file (IMAPFW01)");
+            throw UserError("-D applies to assembler sources (.s, .asm, .inc, text); '" +
+                            o.program + "' is read as a program file (IMAPFW01)");
         try {
             return isa::load_program(o.program);
         } catch (const isa::FormatError& e) {
@@ -262,10 +274,11 @@ Subcommand register_exec(CLI::App& app) {
     auto o = std::make_shared<ExecOptions>();
     CLI::App* sub = app.add_subcommand(
         "exec",
-        "Run your own program (IMAPFW01 file, or assembler source .s / .asm) on a model of the "
-        "machine (docs/exec.md)");
+        "Run your own program (IMAPFW01 file, or assembler source .s / .asm / .inc) on a model "
+        "of the machine (docs/exec.md)");
     sub->add_option("PROGRAM", o->program,
-                    "program file (IMAPFW01), or assembler source if the name ends in .s or .asm")
+                    "program file (IMAPFW01), or assembler source: a name ending in .s, .asm or "
+                    ".inc, or any text file without the IMAPFW01 magic")
         ->required();
     sub->add_option("--model", o->model, "model to run: " + exec_model_names())
         ->capture_default_str();
@@ -311,7 +324,7 @@ Subcommand register_exec(CLI::App& app) {
                                        : parse_mem_range(o->dump_mem, cfg.mem_bytes);
             check_output_file("--out-left", o->out_left, true);
             check_output_file("--report", o->report, false);
-            check_wave_outputs(o->waves);
+            check_wave_outputs(o->waves, o->model);
             const isa::ImageVideoPort::Image left = read_input(o->left, "left image");
             const isa::ImageVideoPort::Image right = read_input(o->right, "right image");
             if (!o->left.empty() && !o->right.empty())

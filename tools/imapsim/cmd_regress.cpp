@@ -39,11 +39,13 @@ fs::path first_existing(const std::vector<fs::path>& candidates) {
 
 fs::path default_cases(const fs::path& exe_dir) {
     std::vector<fs::path> c;
+    // an installed binary's own table first (cmake --install: bin/imapsim
+    // beside share/imapsim/regress/cases.json), then the source tree's
+    c.push_back(exe_dir / "../share/imapsim/regress/cases.json");
 #ifdef IMAP_REGRESS_CASES
     c.emplace_back(IMAP_REGRESS_CASES);
 #endif
     c.push_back(exe_dir / "../tests/regress/cases.json");
-    c.push_back(exe_dir / "../share/imapsim/regress/cases.json");
     return first_existing(c);
 }
 

@@ -80,7 +80,7 @@ std::string defines_text(const ModelRun& run, const std::string& source,
          " --left LEFT --right RIGHT" + params + " --out-size " + std::to_string(run.plan.roi.w) +
          "x" + std::to_string(run.plan.roi.h) + machine + " --out-left MAP.png\n";
     t += "; Param block (the batch table):" + params + "\n";
-    t += run.source;
+    t += fw::inline_firmware_includes(run.source);
     return t;
 }
 
@@ -135,7 +135,7 @@ Subcommand register_run(CLI::App& app) {
             check_output_file("--report", o->report, false);
             check_output_file("--emit-program", o->emit_program, false);
             check_output_file("--emit-defines", o->emit_defines, false);
-            check_wave_outputs(o->waves);
+            check_wave_outputs(o->waves, o->model);
             check_distinct_outputs({{"--out", o->out},
                                     {"--out-color", o->out_color},
                                     {"--report", o->report},
@@ -240,6 +240,19 @@ Subcommand register_run(CLI::App& app) {
 
             set_rtl_flags(o->rtl);
             ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves);
+            if (!run.divergence.empty()) {
+                // The lockstep stopped at its first divergence: the report
+                // says where (written on divergence too), no map is written.
+                if (!o->report.empty()) {
+                    nlohmann::json j = divergence_report(run, p, roi, cfg);
+                    j["source"] = source;
+                    v::write_text_atomic(o->report, j.dump(2) + "\n");
+                    std::printf("  report -> %s\n", o->report.c_str());
+                }
+                std::fflush(stdout);
+                std::fprintf(stderr, "imapsim: error: %s\n", run.divergence.c_str());
+                return static_cast<int>(kExitMismatch);
+            }
             const fw::FrameResult& r = run.result;
             const Comparison cmp = compare_maps(r.map, want);
             print_run_summary(run, cmp, cfg, golden_ms);
@@ -271,6 +284,17 @@ Subcommand register_run(CLI::App& app) {
                          {"bad1_disc", b.disc},
                          {"gt_scale", scene.gt_scale},
                          {"masks", !scene.default_masks}};
+            }
+            if (!truth.is_null()) {
+                // The score is the golden's left-frame map after the fill (as
+                // eval scores it), not the map this run checked and writes.
+                truth["scored_map"] = {{"source", "golden"}, {"frame", "left"}, {"fill", true}};
+                truth["output_map"] = {{"frame", g::to_string(p.frame)}, {"fill", false}};
+                if (p.frame != g::Frame::Left)
+                    std::printf(
+                        "  (scored: the golden's left-frame map after the fill; the model's map "
+                        "and --out are the %s frame, unfilled)\n",
+                        g::to_string(p.frame));
             }
             const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
                               const_cast<uint8_t*>(r.map.data.data()));

@@ -44,6 +44,7 @@ struct StreamOptions {
     std::string out_dir, video, json_log, csv_log, max_frames;
     std::string seed = "1", size = "128x128";
     std::string quantum_ns;
+    bool out_color = false, fail_on_deadline = false;
     AlgoFlags algo;
     MachineFlags machine;
 };
@@ -84,11 +85,18 @@ Subcommand register_stream(CLI::App& app) {
                     "camera line period [default: 64 (PAL), less if a frame would not fit in the "
                     "frame period]")
         ->group(tim);
+    sub->add_flag("--fail-on-deadline", o->fail_on_deadline,
+                  "exit 5 when a frame misses its deadline (the stream still runs to the end)")
+        ->group(tim);
     sub->add_option("--quantum-ns", o->quantum_ns, "TLM global quantum [default: 10000]")
         ->group(tim);
     const char* out = "Outputs";
     sub->add_option("--out-dir", o->out_dir,
                     "write disp_NNNN.png per frame and the logs stream.json / stream.csv here")
+        ->group(out);
+    sub->add_flag("--out-color", o->out_color,
+                  "with --out-dir: also disp_NNNN_color.png per frame, colour-mapped (occluded: "
+                  "white), as run --out-color")
         ->group(out);
     sub->add_option("--video", o->video, "write a side-by-side video (left | disparity), .avi")
         ->group(out);
@@ -136,6 +144,8 @@ Subcommand register_stream(CLI::App& app) {
                                     "': the side-by-side video is Motion-JPEG in AVI: use a "
                                     "name ending in .avi");
             }
+            if (o->out_color && o->out_dir.empty())
+                throw UserError("--out-color needs --out-dir (the maps are written there)");
             // Every output path can be written, before any work (the logs
             // are first written a second into the stream).
             check_output_dir("--out-dir", o->out_dir);
@@ -229,7 +239,7 @@ Subcommand register_stream(CLI::App& app) {
                                  {"line_us", timing.line_us},
                                  {"deadline_ms", timing.deadline_ms}}},
                                {"model", "tlm"}};
-            const es::Outputs outputs{o->out_dir, o->video, json_path, csv_path};
+            const es::Outputs outputs{o->out_dir, o->video, json_path, csv_path, o->out_color};
             Progress progress("frames", static_cast<size_t>(std::max(source->count(), 0)));
             es::Hooks hooks;
             hooks.stop_requested = [] { return interrupt::requested(); };
@@ -254,9 +264,14 @@ Subcommand register_stream(CLI::App& app) {
                     timing.deadline_ms, s.missed, s.ran, s.worst_latency, s.mean_latency,
                     s.mean_compute);
                 std::printf(
-                    "  modeled throughput %.2f frames/s (camera %g fps); compute-bound "
-                    "capacity %.2f frames/s\n",
+                    "  modeled throughput %.2f frames/s (camera %g fps: at most that); "
+                    "compute-bound capacity %.2f frames/s\n",
                     s.throughput_fps, timing.fps, s.capacity_fps);
+                if (s.missed && !o->fail_on_deadline)
+                    std::printf(
+                        "  note: %zu frame%s missed the deadline; --fail-on-deadline makes that "
+                        "exit 5\n",
+                        s.missed, s.missed == 1 ? "" : "s");
             }
             std::printf("  simulation: %.3f s wall, %.2f frames/s, modeled/wall = %.3f\n",
                         res.wall_s,
@@ -265,11 +280,18 @@ Subcommand register_stream(CLI::App& app) {
             if (!json_path.empty()) std::printf("  log -> %s\n", json_path.c_str());
             if (!csv_path.empty()) std::printf("  log -> %s\n", csv_path.c_str());
             if (!o->out_dir.empty())
-                std::printf("  disparity maps -> %s/disp_NNNN.png\n", o->out_dir.c_str());
+                std::printf("  disparity maps -> %s/disp_NNNN.png%s\n", o->out_dir.c_str(),
+                            o->out_color ? " (colour-mapped: disp_NNNN_color.png)" : "");
             if (!o->video.empty())
                 std::printf("  video (%d frames) -> %s\n", video_frames, o->video.c_str());
             if (res.error) std::rethrow_exception(res.error);
-            return run.exit_code();
+            const int rc = run.exit_code(o->fail_on_deadline);
+            if (rc == kExitItemErrors && o->fail_on_deadline && s.missed)
+                std::fprintf(stderr,
+                             "imapsim: error: %zu of %zu frames missed the %.3f ms deadline "
+                             "(--fail-on-deadline)\n",
+                             s.missed, s.ran, timing.deadline_ms);
+            return rc;
         }};
 }
 

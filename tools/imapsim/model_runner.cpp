@@ -105,6 +105,7 @@ imap::rtl::RtlWaves rtl_waves(const std::string& path, const imap::waves::TraceS
     w.path = path;
     w.t0 = s.t0;
     w.t1 = s.t1 == UINT64_MAX ? UINT64_MAX : s.t1 - 1;
+    w.limit_bytes = s.limit_bytes;
     w.pes = s.pes;
     if (s.cp) w.groups.push_back("cp"), w.groups.push_back("board");
     if (s.ring || s.mask) w.groups.push_back("array");
@@ -112,13 +113,36 @@ imap::rtl::RtlWaves rtl_waves(const std::string& path, const imap::waves::TraceS
     return w;
 }
 
-void print_rtl_waves(const imap::rtl::RtlWaves& w) {
+// The waves line of an RTL run, as the ISA tracer's: a "->" line only for a
+// file that exists, and the same warnings (stopped at the size limit; an
+// empty window).
+void print_rtl_waves(const imap::rtl::RtlWaves& w, const imap::rtl::RtlRunResult* rr,
+                     const std::string& window, const std::string& limit_name) {
     if (w.path.empty()) return;
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(w.path, ec);
-    std::printf("  waves -> %s (%.2f MB, the design's signals) + %s\n", w.path.c_str(),
-                ec ? 0.0 : static_cast<double>(bytes) / 1048576.0,
+    if (ec) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "warning: --vcd: no waves were written to %s\n", w.path.c_str());
+        return;
+    }
+    const bool limited = rr && rr->waves_limited;
+    std::printf("  waves -> %s (%.2f MB, the design's signals%s) + %s\n", w.path.c_str(),
+                static_cast<double>(bytes) / 1048576.0,
+                limited ? ", stopped at --trace-limit-mb" : "",
                 imap::rtl::gtkw_path(w.path).c_str());
+    std::fflush(stdout);
+    if (limited)
+        std::fprintf(stderr,
+                     "warning: --vcd: the trace stopped at %s (valid up to there); narrow "
+                     "--trace-window / --trace-pes or raise the limit\n",
+                     limit_name.c_str());
+    if (rr && rr->waves_empty)
+        std::fprintf(stderr,
+                     "warning: --trace-window %s starts at cycle %llu, after the end of the run "
+                     "(cycle %llu): the trace holds the final state only\n",
+                     window.c_str(), static_cast<unsigned long long>(w.t0),
+                     static_cast<unsigned long long>(rr->cycles));
 }
 #endif
 }  // namespace
@@ -174,8 +198,12 @@ void add_wave_flags(CLI::App* app, WaveFlags& f) {
         ->group(grp);
 }
 
-void check_wave_outputs(const WaveFlags& f) {
+void check_wave_outputs(const WaveFlags& f, const std::string& model) {
     if (f.vcd.empty()) return;
+    if (lower_extension(f.vcd) == ".fst" && model != "rtl")
+        throw UserError("--vcd '" + f.vcd + "': --model " + model +
+                        " writes VCD, not FST: name it .vcd (GTKWave's vcd2fst converts it), "
+                        "or trace --model rtl, which writes FST");
     check_output_file("--vcd", f.vcd, false);
 #ifdef IMAPSIM_HAVE_WAVES
     const std::string view = imap::waves::detail::gtkw_path_of(f.vcd);
@@ -359,14 +387,20 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                                      fw::to_video_image(right), roi.w, roi.h, &out, lc.rtl);
                 } catch (const isa::Fault&) {
 #ifdef IMAPSIM_HAVE_WAVES
-                    print_rtl_waves(lc.rtl.waves);
+                    print_rtl_waves(lc.rtl.waves, nullptr, "", rtl_sel.limit_name);
 #endif
                     throw;
                 }
 #ifdef IMAPSIM_HAVE_WAVES
-                print_rtl_waves(lc.rtl.waves);
+                print_rtl_waves(lc.rtl.waves, &rr,
+                                waves && !waves->window.empty() ? waves->window : "all",
+                                rtl_sel.limit_name);
 #endif
                 r = fw::frame_result(run.plan, prog, rr, std::move(out.image[0].pixels));
+                run.model_info["rtl"] = {{"configuration", rr.configuration},
+                                         {"clocks", rr.clocks},
+                                         {"cycles", rr.cycles},
+                                         {"waves_written", rr.waves_written}};
                 std::printf("  RTL design: configuration %s, %llu clocks\n",
                             rr.configuration.c_str(), static_cast<unsigned long long>(rr.clocks));
                 print_rtl_area();
@@ -374,7 +408,35 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                 const rtl::LockstepResult lr = rtl::run_lockstep(
                     cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
                     fw::to_video_image(right), roi.w, roi.h, &out, lc);
-                if (lr.diverged) throw UserError(lr.divergence.message(), kExitMismatch);
+                nlohmann::json ls = {{"instructions", lr.instructions},
+                                     {"compared", lr.compared},
+                                     {"cycles_tlm", lr.tlm.cycles},
+                                     {"cycles_rtl", lr.rtl.cycles},
+                                     {"rtl_configuration", lr.rtl.configuration},
+                                     {"rtl_clocks", lr.rtl.clocks},
+                                     {"wall_s", lr.wall_s},
+                                     {"diverged", lr.diverged}};
+                if (lr.diverged) {
+                    const rtl::Divergence& d = lr.divergence;
+                    ls["divergence"] = {{"instruction", d.instruction},
+                                        {"cycle", d.cycle},
+                                        {"pc", d.pc},
+                                        {"word", d.word},
+                                        {"disassembly", d.disassembly},
+                                        {"what", d.what},
+                                        {"pe", d.pe},
+                                        {"address", d.address},
+                                        {"tlm_value", d.tlm_value},
+                                        {"rtl_value", d.rtl_value},
+                                        {"detail", d.detail},
+                                        {"reference", d.reference},
+                                        {"waves", d.waves},
+                                        {"message", d.message()}};
+                    run.model_info["lockstep"] = ls;
+                    run.divergence = d.message();
+                    return run;
+                }
+                run.model_info["lockstep"] = ls;
                 std::printf(
                     "  lockstep: TLM and RTL agree at all %llu retired instructions (%llu "
                     "compared), cycles TLM %llu = RTL %llu\n",
@@ -478,6 +540,42 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
         r.wall_s > 0 ? r.modeled_ms / 1e3 / r.wall_s : 0.0, golden_ms);
 }
 
+namespace {
+
+// The parameters of a run, as every report carries them.
+nlohmann::json params_json(const ModelRun& run, const g::Params& p, const g::Roi& roi,
+                           const isa::MachineConfig& cfg) {
+    nlohmann::json prm;
+    prm["algorithm"] = algo_params_json(p);
+    prm["algorithm"]["roi"] = {roi.x0, roi.y0, roi.w, roi.h};
+    prm["machine"] = machine_params_json(cfg);
+    prm["machine_info"] = machine_param_info_json(cfg);
+    prm["firmware"] = {{"words", run.program_words},
+                       {"local_bytes_per_pe", run.plan.mem_needed},
+                       {"external_bytes_per_pe", run.plan.ext_needed},
+                       {"batches", run.plan.batches.size()},
+                       {"segments", run.plan.nseg},
+                       {"split_input_relayout", run.plan.split_in},
+                       {"seed_col_resolved", run.plan.f.s}};
+    nlohmann::json pb = nlohmann::json::object();
+    for (const auto& [i, val] : fw::param_block(run.plan)) pb[std::to_string(i)] = val;
+    prm["firmware"]["param_block"] = pb;
+    return prm;
+}
+
+}  // namespace
+
+nlohmann::json divergence_report(const ModelRun& run, const g::Params& p, const g::Roi& roi,
+                                 const isa::MachineConfig& cfg) {
+    nlohmann::json j;
+    j["model"] = run.model;
+    j["bit_exact"] = nullptr;  // the run stopped at the divergence: no map
+    j["error"] = run.divergence;
+    for (const auto& [k, v] : run.model_info.items()) j[k] = v;
+    j["params"] = params_json(run, p, roi, cfg);
+    return j;
+}
+
 nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::Params& p,
                           const g::Roi& roi, const isa::MachineConfig& cfg, double golden_ms) {
     const fw::FrameResult& r = run.result;
@@ -519,22 +617,8 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
                      {"ext_bits", a.ext_bits}};
     }
 #endif
-    nlohmann::json prm;
-    prm["algorithm"] = algo_params_json(p);
-    prm["algorithm"]["roi"] = {roi.x0, roi.y0, roi.w, roi.h};
-    prm["machine"] = machine_params_json(cfg);
-    prm["machine_info"] = machine_param_info_json(cfg);
-    prm["firmware"] = {{"words", run.program_words},
-                       {"local_bytes_per_pe", run.plan.mem_needed},
-                       {"external_bytes_per_pe", run.plan.ext_needed},
-                       {"batches", run.plan.batches.size()},
-                       {"segments", run.plan.nseg},
-                       {"split_input_relayout", run.plan.split_in},
-                       {"seed_col_resolved", run.plan.f.s}};
-    nlohmann::json pb = nlohmann::json::object();
-    for (const auto& [i, val] : fw::param_block(run.plan)) pb[std::to_string(i)] = val;
-    prm["firmware"]["param_block"] = pb;
-    j["params"] = prm;
+    for (const auto& [k, v] : run.model_info.items()) j[k] = v;
+    j["params"] = params_json(run, p, roi, cfg);
     return j;
 }
 

@@ -53,6 +53,13 @@ struct ModelRun {
     imap::isa::Program program;  // the program that ran
     std::string source;          // its generated source (constants, plan macros, .include of dp.s)
     imap::firmware::FrameResult result;
+    // What the model itself reports, merged into the run report: "rtl"
+    // (configuration, clocks), "lockstep" (instructions retired and
+    // compared, both models' cycles, the first divergence).
+    nlohmann::json model_info = nlohmann::json::object();
+    // A lockstep divergence: its one-line message (empty when none). The
+    // run stopped there, so `result` holds no map.
+    std::string divergence;
 };
 
 // Waves (docs/waves.md): --vcd FILE (off when empty), --trace-pes,
@@ -63,8 +70,10 @@ struct WaveFlags {
 };
 void add_wave_flags(CLI::App* app, WaveFlags& f);
 // Checks, before the run, that the VCD and its .gtkw view can be written
-// (UserError naming the file otherwise); nothing when --vcd is not given.
-void check_wave_outputs(const WaveFlags& f);
+// and that `model` writes the format the name asks for (an .fst name on a
+// model that writes VCD is refused); UserError naming the file otherwise;
+// nothing when --vcd is not given.
+void check_wave_outputs(const WaveFlags& f, const std::string& model);
 
 // The waves of one run: builds the tracer for `f` (nothing without --vcd),
 // and after the run finishes the files and prints where they went, with a
@@ -105,6 +114,11 @@ Comparison compare_maps(const imap::golden::DisparityMap& got,
 
 void print_run_summary(const ModelRun& run, const Comparison& cmp,
                        const imap::isa::MachineConfig& cfg, double golden_ms);
+
+// The report of a lockstep run that diverged: the model's fields (the
+// lockstep's, with the divergence) and the parameters; no map, no cycles.
+nlohmann::json divergence_report(const ModelRun& run, const imap::golden::Params& p,
+                                 const imap::golden::Roi& roi, const imap::isa::MachineConfig& cfg);
 
 nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const imap::golden::Params& p,
                           const imap::golden::Roi& roi, const imap::isa::MachineConfig& cfg,

@@ -114,16 +114,20 @@ bool check_png(std::vector<uint8_t>& b) {
 
 cv::Mat load_grey8(const std::string& path, const std::string& what) {
     const std::string who = quoted(what, path);
-    const std::string unreadable = who + ": cannot read (missing, unreadable or not an image)";
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw InputError(who + ": is a directory, not an image");
 
     // Read the bytes ourselves: exact errors, no OpenCV warnings on stderr.
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(unreadable);
+    if (!in) {
+        // say which of the three it is
+        if (!fs::exists(path, ec)) throw InputError(who + ": cannot read (no such file)");
+        throw InputError(who + ": cannot read (" + std::strerror(errno) +
+                         "; check its permissions)");
+    }
     std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(unreadable);
+    if (in.bad()) throw InputError(who + ": cannot read (read error)");
     if (bytes.empty()) throw InputError(who + ": cannot read (empty file, not an image)");
 
     if (!check_png(bytes)) throw InputError(who + ": cannot read (corrupt or truncated PNG)");
@@ -133,7 +137,8 @@ cv::Mat load_grey8(const std::string& path, const std::string& what) {
     } catch (const cv::Exception&) {
         m.release();
     }
-    if (m.data == nullptr) throw InputError(unreadable);
+    if (m.data == nullptr)
+        throw InputError(who + ": cannot read (not an image: no decoder accepts it; use PNG)");
     if (m.dims != 2 || m.rows <= 0 || m.cols <= 0) throw InputError(who + ": image has zero size");
 
     switch (m.depth()) {

@@ -92,6 +92,27 @@ Scene load_scene(const std::string& dir, double gt_scale_override, int ndisp_ove
     sc.dir = dir;
     sc.name = folder_name(dir);
     const Catalog cat = read_catalog(dir, sc.name);
+    if (!fs::exists(fs::path(dir) / cat.files.left, ec)) {
+        // A data folder given as a scene: name what is in it and the flag
+        // that scores it, before asking for a scale or a disparity range.
+        std::vector<std::string> scenes;
+        try {
+            for (const std::string& p : list_scene_dirs(dir)) scenes.push_back(folder_name(p));
+        } catch (const InputError&) {
+            // an unlistable folder: the plain message below
+        }
+        const int n = static_cast<int>(scenes.size());
+        std::string inside;
+        for (int i = 0; i < std::min(n, 4); ++i) inside += (i ? ", " : "") + scenes[size_t(i)];
+        if (n > 0)
+            throw InputError("scene folder '" + dir + "': not a scene folder (no " +
+                             cat.files.left + "); it holds " + std::to_string(n) +
+                             " scene folder(s) (" + inside + (n > 4 ? ", ..." : "") +
+                             "): give one of them, e.g. '" + (fs::path(dir) / scenes[0]).string() +
+                             "', or score them all with eval --all " + dir);
+        throw InputError("scene folder '" + dir + "': not a scene folder (no " + cat.files.left +
+                         " in it)");
+    }
     const std::string where = cat.path.empty()
                                   ? std::string("no scenes.json in the folder or its parent")
                                   : "no entry for it in '" + cat.path + "'";

@@ -54,6 +54,8 @@ struct RtlWaves {
     std::string path;  // .vcd or .fst (by the extension); empty = no waves
     // machine cycles [t0, t1] (inclusive); the whole run by default
     uint64_t t0 = 0, t1 = UINT64_MAX;
+    // stop tracing beyond about this file size (checked every 256 clocks; 0: none)
+    uint64_t limit_bytes = 0;
     // PEs with their datapath in the waves (empty = all); the CP, the array
     // level (ring links, mask bus) and the board are always in.
     std::vector<int> pes;

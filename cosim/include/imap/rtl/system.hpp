@@ -62,6 +62,8 @@ struct RtlRunResult : isa::ModelRun {
     uint64_t clocks = 0;        // clock periods of the run (machine cycles + zero-cost slots)
     std::string configuration;  // "p256_m1024_x65536 (fast)"
     bool waves_written = false;
+    bool waves_empty = false;    // the window started after the run's end: one sample
+    bool waves_limited = false;  // the trace stopped at RtlWaves::limit_bytes
     std::shared_ptr<const RtlState> state;
 };
 

@@ -44,14 +44,19 @@ OpenedSource open_source(const SourceSpec& s);
 struct Summary {
     size_t frames = 0, ok = 0, mismatch = 0, bad = 0, fault = 0, ran = 0, missed = 0;
     double worst_latency = 0, mean_latency = 0, mean_compute = 0;
-    double throughput_fps = 0;  // frames finished per modeled second, first to last
+    double throughput_fps = 0;  // frames finished per modeled second, first to last,
+                                // at most the camera's rate (a stream cannot finish
+                                // frames faster than they arrive)
     double capacity_fps = 0;    // 1 / mean compute time: the rate if frames were waiting
 };
-Summary summarize(const std::vector<testbench::FrameRecord>& rs);
+// `camera_fps` > 0 caps the throughput at the camera's rate (the first and
+// last frames' latencies differ, so the finish times alone can exceed it).
+Summary summarize(const std::vector<testbench::FrameRecord>& rs, double camera_fps = 0);
 
 nlohmann::json record_json(const testbench::FrameRecord& r);
 std::string records_csv(const std::vector<testbench::FrameRecord>& rs);
-// The log's JSON: `head` (source, parameters, machine, timing), the state
+// The log's JSON: `head` (source, parameters, machine, timing: its fps caps
+// the throughput as in summarize), the state
 // (running, complete, interrupted, stopped-by-error), every frame, the summary.
 nlohmann::json log_json(const nlohmann::json& head, const std::vector<testbench::FrameRecord>& rs,
                         const std::string& state);
@@ -86,6 +91,7 @@ struct Outputs {
     std::string video;      // side-by-side video (empty: none)
     std::string json_path;  // logs (empty: none)
     std::string csv_path;
+    bool out_color = false;  // also disp_NNNN_color.png, colour-mapped (in out_dir)
 };
 
 struct Hooks {
@@ -99,9 +105,10 @@ struct Outcome {
     Summary summary;
     std::string state;  // complete, interrupted, stopped-by-error
     int video_frames = 0;
-    // 130 interrupted, 1 a mismatch, 5 a bad frame or fault, else 0 (an
-    // error of the run itself is result.error, rethrown by the caller).
-    int exit_code() const;
+    // 130 interrupted, 1 a mismatch, 5 a bad frame or fault (or, with
+    // `fail_on_deadline`, a missed deadline), else 0 (an error of the run
+    // itself is result.error, rethrown by the caller).
+    int exit_code(bool fail_on_deadline = false) const;
 };
 
 // Runs the stream: opens the video (before any frame), writes the logs at

@@ -143,8 +143,18 @@ golden::Params firmware_part(const golden::Params& p);
 // FirmwareError when the set does not fit `cfg`.
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg);
 
-// Folder of the firmware sources.
+// Folder of the firmware sources as the assembler names them ("firmware/asm"):
+// the sources are compiled into the library (firmware_sources()), so
+// diagnostics and fault messages name firmware/asm/FILE:LINE wherever the
+// binary runs.
 std::string firmware_dir();
+// The firmware sources by path (firmware_dir() + "/" + file name), for
+// isa::AsmOptions::files.
+const std::map<std::string, std::string>& firmware_sources();
+// `text` (assembled as if it were in firmware_dir()) with every .include of
+// a firmware source replaced by that source's text, recursively: a program
+// that assembles anywhere, without the firmware's files.
+std::string inline_firmware_includes(const std::string& text);
 
 // One batch of ROI lines processed together (lines first .. first+lines-1,
 // of which out_count starting at batch line out_first are written out).

@@ -36,6 +36,10 @@ struct AsmOptions {
     std::map<std::string, int64_t> defines;  // -D NAME=VALUE, visible as constants
     int max_errors = 20;
     bool source_map = true;
+    // Files held in memory, by path (not owned): an .include whose resolved
+    // path is here reads this text instead of the disk (the firmware
+    // compiled into the binary).
+    const std::map<std::string, std::string>* files = nullptr;
 };
 
 // Assembles a file; .include paths are relative to the including file.

@@ -1,0 +1,26 @@
+# Writes OUT: a C++ table of the firmware sources (every *.s and *.inc of
+# DIR, by file name), so that the binaries assemble the firmware without
+# the source tree (an installed imapsim). Run by the build whenever a
+# source changes: cmake -DDIR=... -DOUT=... -P embed_sources.cmake
+file(GLOB files RELATIVE ${DIR} ${DIR}/*.s ${DIR}/*.inc)
+list(SORT files)
+set(body "// Generated from firmware/asm by embed_sources.cmake: do not edit.\n")
+string(APPEND body "#include \"embedded.hpp\"\n\nnamespace imap::firmware::detail {\n\n")
+string(APPEND body "const std::vector<std::pair<const char*, const char*>>& embedded_sources() {\n")
+string(APPEND body "    static const std::vector<std::pair<const char*, const char*>> files = {\n")
+foreach(f ${files})
+  file(READ ${DIR}/${f} text)
+  string(FIND "${text}" ")IMAPFW\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${f} contains the raw-string delimiter )IMAPFW\"")
+  endif()
+  string(APPEND body "        {\"${f}\", R\"IMAPFW(${text})IMAPFW\"},\n")
+endforeach()
+string(APPEND body "    };\n    return files;\n}\n\n}  // namespace imap::firmware::detail\n")
+set(old "")
+if(EXISTS ${OUT})
+  file(READ ${OUT} old)
+endif()
+if(NOT old STREQUAL body)
+  file(WRITE ${OUT} "${body}")
+endif()

@@ -1,0 +1,12 @@
+// The firmware sources compiled into the library (generated from
+// firmware/asm by embed_sources.cmake): file name, text.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+namespace imap::firmware::detail {
+
+const std::vector<std::pair<const char*, const char*>>& embedded_sources();
+
+}  // namespace imap::firmware::detail
