@@ -20,6 +20,7 @@ PACKAGES=(
   slurmctld slurmd        # Slurm 22.05 controller and node daemons (CTest engine.slurm, docs/cluster.md)
   slurm-client            # sbatch, squeue, scancel, sacct: the Slurm executor
   gtkwave xvfb xauth      # every generated view loaded in GTKWave, headless (CTest waves.gtkwave_views)
+  lcov                    # genhtml / lcov of the RTL code coverage (scripts/rtl-coverage.sh)
 )
 
 missing=()

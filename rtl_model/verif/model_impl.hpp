@@ -12,8 +12,40 @@
 #include "verilated_fst_c.h"
 #include "verilated_syms.h"
 #include "verilated_vcd_c.h"
+#if VM_COVERAGE
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "verilated_cov.h"
+#endif
 
 namespace imap::rtl::detail {
+
+#if VM_COVERAGE
+// Coverage build (IMAP_RTL_COVERAGE, scripts/rtl-coverage.sh): when a model
+// is destroyed, the design's line, branch and toggle counts of this process
+// are written to $IMAP_RTL_COVERAGE_DIR/cov-PID-N.dat (nothing without the
+// variable) and the coverage items are dropped: they point into the models'
+// counters, which go with them. Models of one process are destroyed after
+// their simulation, so the first writes all of them.
+inline void write_coverage() {
+    static int n = 0;
+    const char* dir = std::getenv("IMAP_RTL_COVERAGE_DIR");
+    VerilatedCovContext* cov = Verilated::threadContextp()->coveragep();
+    if (dir != nullptr && *dir != '\0') {
+        const std::string path = std::string(dir) + "/cov-" +
+                                 std::to_string(static_cast<long>(::getpid())) + "-" +
+                                 std::to_string(n++) + ".dat";
+        cov->write(path.c_str());
+    }
+    cov->clear();
+}
+#else
+inline void write_coverage() {}
+#endif
 
 template <class V, class = void>
 struct HasMutantPort : std::false_type {};
@@ -36,7 +68,10 @@ template <class V, int Trace>
 class ModelImpl final : private TraceOn<Trace>, public Model {
   public:
     explicit ModelImpl(const char* name) : dut_(name) {}
-    ~ModelImpl() override { trace_close(); }
+    ~ModelImpl() override {
+        trace_close();
+        write_coverage();  // coverage build only
+    }
 
     sc_core::sc_module& module() override { return dut_; }
     TraceFormat trace_format() const override { return static_cast<TraceFormat>(Trace); }

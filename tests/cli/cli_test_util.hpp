@@ -14,11 +14,12 @@ struct Result {
     std::string out;  // stdout and stderr together
 };
 
-// Runs `IMAPSIM_EXE args` through the shell and waits for it; with `cwd`,
-// in that folder (relative file names in `args` are taken from there).
-inline Result run(const std::string& args, const std::string& cwd = "") {
-    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") +
-                            std::string(IMAPSIM_EXE) + " " + args + " 2>&1";
+// Runs `exe args` through the shell and waits for it; with `cwd`, in that
+// folder (relative file names in `args` are taken from there).
+inline Result run_program(const std::string& exe, const std::string& args,
+                          const std::string& cwd = "") {
+    const std::string cmd =
+        (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") + "'" + exe + "' " + args + " 2>&1";
     Result r;
     FILE* p = popen(cmd.c_str(), "r");
     BOOST_REQUIRE(p != nullptr);
@@ -28,6 +29,11 @@ inline Result run(const std::string& args, const std::string& cwd = "") {
     const int st = pclose(p);
     r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
     return r;
+}
+
+// The same for this build's imapsim.
+inline Result run(const std::string& args, const std::string& cwd = "") {
+    return run_program(IMAPSIM_EXE, args, cwd);
 }
 
 }  // namespace clitest

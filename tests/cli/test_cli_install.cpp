@@ -29,16 +29,7 @@ BOOST_AUTO_TEST_CASE(installed_binary_runs_without_the_source_tree) {
     BOOST_REQUIRE(fs::exists(cases));
 
     auto run = [&](const std::string& args) {
-        clitest::Result r;
-        const std::string cmd = "cd / && '" + exe.string() + "' " + args + " 2>&1";
-        FILE* p = popen(cmd.c_str(), "r");
-        BOOST_REQUIRE(p != nullptr);
-        char buf[4096];
-        size_t n = 0;
-        while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-        const int st = pclose(p);
-        r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-        return r;
+        return clitest::run_program(exe.string(), args, "/");  // away from the source tree
     };
     // The firmware assembles from the binary itself, run from "/".
     const clitest::Result ok = run("run --model core --size 32x12 --D 6");

@@ -16,31 +16,30 @@ bool has(const Result& r, const std::string& s) {
     return r.out.find(s) != std::string::npos;
 }
 
+// Runs `args`, which must fail with exit 2 and print `needle`.
+Result expect_input_error(const std::string& args, const std::string& needle) {
+    const Result r = run(args);
+    BOOST_TEST_CONTEXT(args << "\n" << r.out) {
+        BOOST_TEST(r.code == 2);
+        BOOST_TEST(has(r, needle));
+    }
+    return r;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(misspelt_commands_and_options_are_named_with_a_suggestion) {
-    const Result c = run("swep --pes 8");
-    BOOST_TEST_INFO(c.out);
-    BOOST_TEST(c.code == 2);
-    BOOST_TEST(has(c, "imapsim: error: unknown command 'swep' (did you mean sweep?)"));
-    const Result o = run("run --out-colour x.png");
-    BOOST_TEST_INFO(o.out);
-    BOOST_TEST(o.code == 2);
-    BOOST_TEST(has(o, "unknown option --out-colour (did you mean --out-color?) for imapsim run"));
+    expect_input_error("swep --pes 8",
+                       "imapsim: error: unknown command 'swep' (did you mean sweep?)");
+    expect_input_error("run --out-colour x.png",
+                       "unknown option --out-colour (did you mean --out-color?) for imapsim run");
     // no subcommand: the options are run's
-    const Result n = run("--sizee 64x32");
-    BOOST_TEST_INFO(n.out);
-    BOOST_TEST(n.code == 2);
-    BOOST_TEST(has(n, "unknown option --sizee (did you mean --size?)"));
+    expect_input_error("--sizee 64x32", "unknown option --sizee (did you mean --size?)");
     // nothing close: no suggestion, still the name
-    const Result f = run("sweep --frobnicate 3");
-    BOOST_TEST_INFO(f.out);
-    BOOST_TEST(f.code == 2);
-    BOOST_TEST(has(f, "unknown option --frobnicate for imapsim sweep"));
+    const Result f =
+        expect_input_error("sweep --frobnicate 3", "unknown option --frobnicate for imapsim sweep");
     BOOST_TEST(!has(f, "did you mean"));
-    const Result z = run("zzzz");
-    BOOST_TEST(z.code == 2);
-    BOOST_TEST(has(z, "unknown command 'zzzz'; commands: run, golden"), z.out);
+    expect_input_error("zzzz", "unknown command 'zzzz'; commands: run, golden");
 }
 
 BOOST_AUTO_TEST_CASE(a_data_folder_given_as_a_scene_says_so) {
@@ -64,14 +63,9 @@ BOOST_AUTO_TEST_CASE(eval_help_shows_the_frame_it_accepts) {
 }
 
 BOOST_AUTO_TEST_CASE(limits_name_what_they_depend_on) {
-    const Result d = run("run --model core --size 32x64 --D 40");
-    BOOST_TEST_INFO(d.out);
-    BOOST_TEST(d.code == 2);
-    BOOST_TEST(has(d, "with N = 32 the ROI width"));
-    const Result m = run("run --model core --left /nonexistent/l.png --right /nonexistent/r.png");
-    BOOST_TEST_INFO(m.out);
-    BOOST_TEST(m.code == 2);
-    BOOST_TEST(has(m, "left image '/nonexistent/l.png': cannot read (no such file)"));
+    expect_input_error("run --model core --size 32x64 --D 40", "with N = 32 the ROI width");
+    expect_input_error("run --model core --left /nonexistent/l.png --right /nonexistent/r.png",
+                       "left image '/nonexistent/l.png': cannot read (no such file)");
 }
 
 BOOST_AUTO_TEST_CASE(help_says_what_no_command_does_and_the_exit_codes) {

@@ -11,6 +11,32 @@
 
 using namespace rtltest;
 
+namespace {
+
+// Runs the frame on the core and in lockstep (TLM against RTL) and checks
+// that they agree at every instruction, bit-exact against the golden's
+// map, with the same cycles per phase on all three; returns both results.
+std::pair<fw::FrameResult, rtl::LockstepResult> lockstep_frame(
+    const isa::MachineConfig& cfg, const fw::FramePlan& plan, const isa::Program& prog,
+    const Frame& frame, const g::Roi& roi, const g::DisparityMap& want) {
+    fw::FrameResult core = fw::run_frame_core(plan, prog, frame.left(), frame.right(), cfg);
+    rtl::OutputImages out;
+    rtl::LockstepResult r =
+        rtl::run_lockstep(cfg, prog, fw::param_block(plan), fw::to_video_image(frame.left()),
+                          fw::to_video_image(frame.right()), roi.w, roi.h, &out);
+    BOOST_TEST_INFO(r.divergence.message());
+    BOOST_REQUIRE(!r.diverged);
+    BOOST_CHECK(out.image[0].pixels == want.data);
+    BOOST_CHECK_EQUAL(r.tlm.cycles, r.rtl.cycles);
+    BOOST_CHECK_EQUAL(r.rtl.cycles, core.cycles);
+    BOOST_CHECK_EQUAL(r.compared, r.instructions);
+    BOOST_CHECK_EQUAL(r.instructions, core.stats.instructions);
+    BOOST_CHECK(r.tlm.phase_cycles == r.rtl.phase_cycles);
+    return {std::move(core), std::move(r)};
+}
+
+}  // namespace
+
 #if RTL_TEST_SPILL
 BOOST_AUTO_TEST_CASE(lockstep_passes_on_masked_spills) {
     // Single mode, 6 lines of a 96-wide ROI at D = 90 on 16 PEs: 376 B of
@@ -34,18 +60,7 @@ BOOST_AUTO_TEST_CASE(lockstep_passes_on_masked_spills) {
     BOOST_REQUIRE(plan.batches[0].lines < P);
     const isa::Program prog = fw::assemble_frame(p, plan);
     const g::DisparityMap want = g::compute(p, frame.left(), frame.right(), roi);
-    const fw::FrameResult core = fw::run_frame_core(plan, prog, frame.left(), frame.right(), cfg);
-    rtl::OutputImages out;
-    const rtl::LockstepResult r =
-        rtl::run_lockstep(cfg, prog, fw::param_block(plan), fw::to_video_image(frame.left()),
-                          fw::to_video_image(frame.right()), roi.w, roi.h, &out);
-    BOOST_TEST_INFO(r.divergence.message());
-    BOOST_REQUIRE(!r.diverged);
-    BOOST_CHECK(out.image[0].pixels == want.data);
-    BOOST_CHECK_EQUAL(r.tlm.cycles, r.rtl.cycles);
-    BOOST_CHECK_EQUAL(r.rtl.cycles, core.cycles);
-    BOOST_CHECK_EQUAL(r.compared, r.instructions);
-    BOOST_CHECK(r.tlm.phase_cycles == r.rtl.phase_cycles);
+    const auto [core, r] = lockstep_frame(cfg, plan, prog, frame, roi, want);
     uint64_t spill = 0, every_pe = 0;
     for (const auto& [n, c] : core.phases)
         if (n == "spill") spill = c;
@@ -85,20 +100,7 @@ BOOST_AUTO_TEST_CASE(lockstep_passes_on_dp_firmware) {
         cfg.validate();
     }
     const g::DisparityMap want = g::compute(c.p, c.frame.left(), c.frame.right(), c.roi);
-    const fw::FrameResult core =
-        fw::run_frame_core(c.plan, c.prog, c.frame.left(), c.frame.right(), cfg);
-    rtl::OutputImages out;
-    const rtl::LockstepResult r =
-        rtl::run_lockstep(cfg, c.prog, fw::param_block(c.plan), fw::to_video_image(c.frame.left()),
-                          fw::to_video_image(c.frame.right()), c.roi.w, c.roi.h, &out);
-    BOOST_TEST_INFO(r.divergence.message());
-    BOOST_REQUIRE(!r.diverged);
-    BOOST_CHECK(out.image[0].pixels == want.data);
-    BOOST_CHECK_EQUAL(r.tlm.cycles, r.rtl.cycles);
-    BOOST_CHECK_EQUAL(r.rtl.cycles, core.cycles);
-    BOOST_CHECK_EQUAL(r.compared, r.instructions);
-    BOOST_CHECK_EQUAL(r.instructions, core.stats.instructions);
-    BOOST_CHECK(r.tlm.phase_cycles == r.rtl.phase_cycles);
+    const auto [core, r] = lockstep_frame(cfg, c.plan, c.prog, c.frame, c.roi, want);
     BOOST_TEST_MESSAGE("P=" << P << " costs " << RTL_TEST_COSTS << ": " << r.instructions
                             << " instructions, " << r.rtl.cycles << " cycles, " << r.wall_s
                             << " s");

@@ -97,48 +97,44 @@ void check_view(const fs::path& dir, const fs::path& gtkw) {
     }
 }
 
-void run_ok(const std::string& args, const fs::path& cwd) {
-    const clitest::Result r = clitest::run(args, cwd.string());
+// Runs `args` in a fresh folder `sub` (exit `code`) and checks the view
+// `gtkw` it wrote there.
+void check_run_view(const std::string& sub, const std::string& args, const std::string& gtkw,
+                    int code = 0) {
+    const fs::path d = tmpdir() / sub;
+    fs::create_directories(d);
+    const clitest::Result r = clitest::run(args, d.string());
     BOOST_TEST_INFO(r.out);
-    BOOST_TEST_REQUIRE(r.code == 0);
+    BOOST_TEST_REQUIRE(r.code == code);
+    check_view(d, d / gtkw);
 }
 
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(instruction_level_view) {
-    const fs::path d = tmpdir() / "core";
-    fs::create_directories(d);
-    run_ok("run --model core --size 32x12 --D 6 --vcd core.vcd --trace-window 0:2000", d);
-    check_view(d, d / "core.gtkw");
+    check_run_view("core",
+                   "run --model core --size 32x12 --D 6 --vcd core.vcd --trace-window 0:2000",
+                   "core.gtkw");
 }
 
 BOOST_AUTO_TEST_CASE(rtl_vcd_view_8_pes) {
-    const fs::path d = tmpdir() / "rtl8";
-    fs::create_directories(d);
-    run_ok(
-        "run --model rtl --pes 8 --size 32x12 --D 6 --vcd r.vcd --trace-pes 0:1 "
-        "--trace-window 0:800",
-        d);
-    check_view(d, d / "r.gtkw");
+    check_run_view("rtl8",
+                   "run --model rtl --pes 8 --size 32x12 --D 6 --vcd r.vcd --trace-pes 0:1 "
+                   "--trace-window 0:800",
+                   "r.gtkw");
 }
 
 BOOST_AUTO_TEST_CASE(rtl_fst_view_256_pes) {
-    const fs::path d = tmpdir() / "rtl256";
-    fs::create_directories(d);
-    run_ok(
-        "run --model rtl --pes 256 --size 32x12 --D 6 --vcd r.fst --trace-pes 4:7 "
-        "--trace-window 0:800",
-        d);
-    check_view(d, d / "r.gtkw");
+    check_run_view("rtl256",
+                   "run --model rtl --pes 256 --size 32x12 --D 6 --vcd r.fst --trace-pes 4:7 "
+                   "--trace-window 0:800",
+                   "r.gtkw");
 }
 
 BOOST_AUTO_TEST_CASE(lockstep_divergence_view) {
-    const fs::path d = tmpdir() / "lockstep";
-    fs::create_directories(d);
-    const clitest::Result r = clitest::run(
-        "run --model lockstep --pes 8 --size 32x12 --D 6 --inject-fault 20:3:r5:0x24", d.string());
-    BOOST_TEST_INFO(r.out);
-    BOOST_TEST_REQUIRE(r.code == 1);
-    check_view(d, d / "rtl_divergence.gtkw");
-    fs::remove_all(d.parent_path());
+    // the divergence's exit code 1, and its waves' view
+    check_run_view("lockstep",
+                   "run --model lockstep --pes 8 --size 32x12 --D 6 --inject-fault 20:3:r5:0x24",
+                   "rtl_divergence.gtkw", 1);
+    fs::remove_all(tmpdir());
 }
