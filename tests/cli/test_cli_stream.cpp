@@ -150,6 +150,14 @@ BOOST_AUTO_TEST_CASE(bare_output_file_names) {
     BOOST_REQUIRE_MESSAGE(r2.code == 0, r2.out);
     BOOST_TEST(fs::is_regular_file(d / "n1" / "s.json"));
     BOOST_TEST(fs::is_regular_file(d / "n1" / "stream.csv"));
+    // A folder name with a trailing '/' (as shell completion writes it) is
+    // created like the name without it, for stream and synth alike.
+    const Result r3 = run("stream --synthetic 1 --size 64x48 --D 8 --out-dir fresh/", d.string());
+    BOOST_REQUIRE_MESSAGE(r3.code == 0, r3.out);
+    BOOST_TEST(count_files(d / "fresh", "disp_") == 1u);
+    const Result r4 = run("synth --seed 1 --size 64x48 --out-dir scene/", d.string());
+    BOOST_REQUIRE_MESSAGE(r4.code == 0, r4.out);
+    BOOST_TEST(fs::is_regular_file(d / "scene" / "left.png"));
     fs::remove_all(d);
 }
 

@@ -63,6 +63,14 @@ double parse_real_flag(const std::string& flag, const std::string& text, double 
 
 namespace {
 
+// The folder a folder name lives in: "out/" and "out" are the same folder
+// (a trailing '/', as shell completion writes it, names no new level).
+std::filesystem::path parent_folder(const std::string& dir) {
+    std::filesystem::path p(dir);
+    while (!p.has_filename() && p.has_parent_path() && p != p.parent_path()) p = p.parent_path();
+    return p.parent_path();
+}
+
 // Throws unless files can be created in `dir` (permissions, read-only file
 // system): creates a uniquely named empty file there and removes it.
 void require_creatable(const std::string& flag, const std::string& path,
@@ -128,7 +136,7 @@ void check_output_dir(const std::string& flag, const std::string& dir) {
         require_creatable(flag, dir, self);
         return;
     }
-    const fs::path up = self.parent_path();
+    const fs::path up = parent_folder(dir);
     if (!up.empty() && !fs::is_directory(up, ec))
         throw UserError(flag + " '" + dir + "': cannot create it: " +
                         (fs::exists(up, ec) ? "'" + up.string() + "' is not a folder"
@@ -141,7 +149,7 @@ void create_output_dir(const std::string& flag, const std::string& dir) {
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
         throw UserError(flag + " '" + dir + "' exists and is not a folder");
-    const fs::path up = fs::path(dir).parent_path();
+    const fs::path up = parent_folder(dir);
     if (!fs::exists(dir, ec) && !up.empty() && !fs::is_directory(up, ec))
         throw UserError(flag + " '" + dir + "': cannot create it: " +
                         (fs::exists(up, ec) ? "'" + up.string() + "' is not a folder"
