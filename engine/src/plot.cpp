@@ -182,15 +182,18 @@ std::string script_text(const Figure& f, const std::string& data_name,
     }
     o << "plot ";
     for (size_t i = 0; i < f.series.size(); ++i) {
-        o << (i ? ", \\\n     " : "") << "datafile index " << i
-          << " using 1:2 with linespoints lw 2 pt "
-          << (i % 4 == 0   ? 7
-              : i % 4 == 1 ? 5
-              : i % 4 == 2 ? 9
-                           : 11)
-          << " ps 1.3 "
-          << (f.series[i].label.empty() ? std::string("notitle")
-                                        : "title " + quoted(f.series[i].label));
+        const Series& s = f.series[i];
+        o << (i ? ", \\\n     " : "") << "datafile index " << i << " using 1:2 with ";
+        if (s.bound_of >= 0)
+            o << "lines lw 1.5 dt 2 lt " << s.bound_of + 1 << " ";
+        else
+            o << "linespoints lw 2 lt " << i + 1 << " pt "
+              << (i % 4 == 0   ? 7
+                  : i % 4 == 1 ? 5
+                  : i % 4 == 2 ? 9
+                               : 11)
+              << " ps 1.3 ";
+        o << (s.label.empty() ? std::string("notitle") : "title " + quoted(s.label));
     }
     o << "\n";
     return o.str();

@@ -70,6 +70,18 @@ double RunResult::dominant_share() const {
     return total ? static_cast<double>(top) / static_cast<double>(total) : 0.0;
 }
 
+uint64_t RunResult::bound_of(const std::string& phase) const {
+    for (const auto& [n, c] : bounds)
+        if (n == phase) return c;
+    return 0;
+}
+
+double RunResult::efficiency() const {
+    return bound_cycles == 0 || cycles == 0
+               ? 0.0
+               : static_cast<double>(bound_cycles) / static_cast<double>(cycles);
+}
+
 std::string describe(const RunResult& r) {
     switch (r.outcome) {
         case Outcome::Ok:
@@ -102,6 +114,19 @@ std::string describe(const RunResult& r) {
     return r.message;
 }
 
+namespace {
+
+// The machine bounds of a report or a stored result (both write them as an
+// object "bounds" and a number "bound_cycles").
+void read_bounds(const json& j, RunResult& r) {
+    r.bounds.clear();
+    if (j.contains("bounds") && j["bounds"].is_object())
+        for (const auto& [k, v] : j["bounds"].items()) r.bounds.emplace_back(k, v.get<uint64_t>());
+    r.bound_cycles = j.value("bound_cycles", uint64_t{0});
+}
+
+}  // namespace
+
 bool read_report(const json& rep, RunResult& r) {
     try {
         if (!rep.is_object() || !rep.contains("cycles") || !rep.contains("phases")) {
@@ -122,6 +147,7 @@ bool read_report(const json& rep, RunResult& r) {
         for (const auto& [k, v] : rep.at("phases").items())
             r.phases.emplace_back(k, v.get<uint64_t>());
         r.pe_utilisation = rep.value("pe_utilisation", 0.0);
+        read_bounds(rep, r);
         r.area.reset();
         if (rep.contains("area") && rep["area"].is_object()) {
             Area a;
@@ -247,6 +273,12 @@ json to_json(const RunResult& r) {
         j["phases"] = ph;  // an array of pairs: keeps the program's order
         if (r.area) j["area"] = {{"cells", r.area->cells}, {"memory_bits", r.area->memory_bits}};
         j["pe_utilisation"] = r.pe_utilisation;
+        if (r.bound_cycles > 0) {
+            json bd = json::object();
+            for (const auto& [n, c] : r.bounds) bd[n] = c;
+            j["bounds"] = bd;
+            j["bound_cycles"] = r.bound_cycles;
+        }
     }
     j["wall_s"] = r.wall_s;
     if (!r.where.empty()) j["where"] = r.where;
@@ -282,6 +314,7 @@ RunResult result_from_json(const json& j) {
             r.area = Area{j["area"].at("cells").get<uint64_t>(),
                           j["area"].at("memory_bits").get<uint64_t>()};
         r.pe_utilisation = j.value("pe_utilisation", 0.0);
+        read_bounds(j, r);
     }
     r.wall_s = j.value("wall_s", 0.0);
     r.where = j.value("where", std::string());

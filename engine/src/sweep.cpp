@@ -599,8 +599,8 @@ std::vector<std::string> header_lines(const Plan& p, const Executor* ex) {
         std::snprintf(b, sizeof b, "%*s  ", static_cast<int>(w[i]), p.swept[i].name.c_str());
         h += b;
     }
-    std::snprintf(b, sizeof b, "%10s %10s %8s %8s %8s  %-17s %7s  %s", "cycles", "modeled ms",
-                  "fps", "local B", "Mcells", "dominant phase", "wall s", "result");
+    std::snprintf(b, sizeof b, "%10s %10s %8s %5s %8s %8s  %-17s %7s  %s", "cycles", "modeled ms",
+                  "fps", "eff", "local B", "Mcells", "dominant phase", "wall s", "result");
     out.push_back(h + b);
     return out;
 }
@@ -638,14 +638,16 @@ std::string row_line(const Plan& p, const Row& r) {
             break;
     }
     const bool ran = r.ran();
-    std::snprintf(b, sizeof b, "%10s %10s %8s %8s %8s  %-17s %7s  ",
-                  ran ? std::to_string(r.run->cycles).c_str() : "-",
-                  ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-",
-                  ran ? fmt("%.2f", r.fps()).c_str() : "-",
-                  r.local_bytes >= 0 ? std::to_string(r.local_bytes).c_str() : "-",
-                  ran && r.run->area ? fmt("%.2f", r.run->area->cells / 1e6).c_str() : "-",
-                  ran ? dominant_text(*r.run).c_str() : "-",
-                  r.run && r.run->wall_s > 0 ? fmt("%.2f", r.run->wall_s).c_str() : "-");
+    std::snprintf(
+        b, sizeof b, "%10s %10s %8s %5s %8s %8s  %-17s %7s  ",
+        ran ? std::to_string(r.run->cycles).c_str() : "-",
+        ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-",
+        ran ? fmt("%.2f", r.fps()).c_str() : "-",
+        ran && r.run->bound_cycles > 0 ? fmt("%.0f%%", 100.0 * r.run->efficiency()).c_str() : "-",
+        r.local_bytes >= 0 ? std::to_string(r.local_bytes).c_str() : "-",
+        ran && r.run->area ? fmt("%.2f", r.run->area->cells / 1e6).c_str() : "-",
+        ran ? dominant_text(*r.run).c_str() : "-",
+        r.run && r.run->wall_s > 0 ? fmt("%.2f", r.run->wall_s).c_str() : "-");
     return l + b + result;
 }
 
@@ -973,11 +975,23 @@ std::string to_csv(const Plan& p, const Result& r) {
     std::ostringstream o;
     std::vector<std::string> head;
     for (const Axis& a : p.swept) head.push_back(a.name);
-    for (const char* c : {"cycles", "modeled_ms", "fps", "status", "message", "bit_exact", "wall_s",
-                          "local_bytes_per_pe", "ext_bytes_per_pe", "dominant_phase",
-                          "dominant_share", "area_cells", "area_memory_bits"})
+    for (const char* c :
+         {"cycles", "modeled_ms", "fps", "status", "message", "bit_exact", "wall_s",
+          "local_bytes_per_pe", "ext_bytes_per_pe", "dominant_phase", "dominant_share",
+          "area_cells", "area_memory_bits"})
         head.push_back(c);
     for (const std::string& ph : r.phase_names) head.push_back("phase_" + ph);
+    head.push_back("bound_cycles");
+    head.push_back("efficiency");
+    // The phases with a machine bound in some row (docs/firmware.md 11).
+    std::vector<std::string> bounded;
+    for (const std::string& ph : r.phase_names)
+        for (const Row& row : r.rows)
+            if (row.ran() && row.run->bound_of(ph) > 0) {
+                bounded.push_back(ph);
+                break;
+            }
+    for (const std::string& ph : bounded) head.push_back("bound_" + ph);
     auto emit = [&](const std::vector<std::string>& cells) {
         for (size_t i = 0; i < cells.size(); ++i) o << (i ? "," : "") << csv_field(cells[i]);
         o << "\n";
@@ -1001,6 +1015,13 @@ std::string to_csv(const Plan& p, const Result& r) {
         c.push_back(ran && row.run->area ? std::to_string(row.run->area->memory_bits) : "");
         for (const std::string& ph : r.phase_names)
             c.push_back(ran ? std::to_string(phase_cycles(*row.run, ph)) : "");
+        const bool bd = ran && row.run->bound_cycles > 0;
+        c.push_back(bd ? std::to_string(row.run->bound_cycles) : "");
+        c.push_back(bd ? fmt("%.4f", row.run->efficiency()) : "");
+        for (const std::string& ph : bounded) {
+            const uint64_t b = ran ? row.run->bound_of(ph) : 0;
+            c.push_back(b > 0 ? std::to_string(b) : "");
+        }
         emit(c);
     }
     if (r.interrupted) {
@@ -1071,6 +1092,13 @@ json to_json(const Plan& p, const Result& r) {
             o["dominant_share"] = rr.dominant_share();
             if (rr.area)
                 o["area"] = {{"cells", rr.area->cells}, {"memory_bits", rr.area->memory_bits}};
+            if (rr.bound_cycles > 0) {
+                json bd = json::object();
+                for (const auto& [n, c] : rr.bounds) bd[n] = c;
+                o["bounds"] = bd;
+                o["bound_cycles"] = rr.bound_cycles;
+                o["efficiency"] = rr.efficiency();
+            }
         }
         if (row.run && row.run->wall_s > 0) o["wall_s"] = row.run->wall_s;
         if (row.local_bytes >= 0) o["local_bytes_per_pe"] = row.local_bytes;
@@ -1146,6 +1174,7 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
 
     // Series.
     std::map<std::string, size_t> series_index;
+    std::map<size_t, std::vector<double>> bound_x, bound_y;  // per achieved series
     size_t not_fit = 0, failed = 0;
     double ymin = INFINITY, ymax = 0;
     for (const Row& row : r.rows) {
@@ -1166,8 +1195,24 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
         f->series[it->second].y.push_back(row.run->modeled_ms);
         ymin = std::min(ymin, row.run->modeled_ms);
         ymax = std::max(ymax, row.run->modeled_ms);
+        // The machine's bound at this point (same clock, so the same ms per cycle).
+        if (row.run->bound_cycles > 0) {
+            const double ms = row.run->modeled_ms * row.run->efficiency();
+            bound_x[it->second].push_back(xv[vi]);
+            bound_y[it->second].push_back(ms);
+            ymin = std::min(ymin, ms);
+        }
     }
     if (f->series.empty()) return false;
+    const size_t achieved = f->series.size();
+    for (size_t i = 0; i < achieved; ++i) {
+        if (bound_x[i].empty()) continue;
+        if (f->series[i].label.empty()) f->series[i].label = "achieved (firmware)";
+        const std::string l =
+            f->series[i].label == "achieved (firmware)" ? std::string() : f->series[i].label;
+        f->series.push_back({(l.empty() ? std::string() : l + ": ") + "machine bound", bound_x[i],
+                             bound_y[i], static_cast<int>(i)});
+    }
     f->hlines = {{100.0, "real time, 10 fps (100 ms)"}, {40.0, "video rate, 25 fps (40 ms)"}};
     f->logy = ymin > 0 && std::max(ymax, 100.0) / std::min(ymin, 40.0) > 20;
     std::string note;

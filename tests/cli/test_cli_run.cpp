@@ -72,6 +72,20 @@ BOOST_AUTO_TEST_CASE(report_has_the_documented_keys) {
     BOOST_TEST(j.at("wall_s").get<double>() >= 0);
     BOOST_TEST(j.at("phases").is_object());
     BOOST_TEST(j.at("phases").at("forward").get<uint64_t>() > 0);
+    // The machine's bound per phase (docs/firmware.md 11): each under its
+    // phase, the frame's bound their sum, efficiency bound / cycles.
+    uint64_t bsum = 0;
+    for (const auto& [ph, b] : j.at("bounds").items()) {
+        BOOST_TEST_INFO("bound of " << ph);
+        BOOST_TEST(b.get<uint64_t>() <= j.at("phases").at(ph).get<uint64_t>());
+        bsum += b.get<uint64_t>();
+    }
+    BOOST_TEST(j.at("bounds").contains("forward"));
+    BOOST_TEST(j.at("bound_cycles").get<uint64_t>() == bsum);
+    BOOST_TEST(
+        j.at("efficiency").get<double>() == double(bsum) / double(j.at("cycles").get<uint64_t>()),
+        boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(j.at("bound_basis").at("node_cycles") == 29);
     BOOST_TEST(j.at("params").at("algorithm").at("D") == 64);
     // Issue 13 item 6: machine parameters are JSON numbers (booleans for
     // on/off), each with whether it is an assumption and whether it makes

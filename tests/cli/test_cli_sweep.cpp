@@ -176,6 +176,21 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
             for (const auto& [k, v] : row)
                 if (k.rfind("phase_", 0) == 0 && !v.empty()) sum += std::stoull(v);
             BOOST_TEST(sum == std::stoull(row.at("cycles")));
+            // The machine bound (docs/firmware.md 11): every bounded phase at
+            // or above its bound, the frame's bound their sum, efficiency
+            // bound / cycles.
+            uint64_t bsum = 0;
+            for (const auto& [k, v] : row)
+                if (k.rfind("bound_", 0) == 0 && k != "bound_cycles" && !v.empty()) {
+                    BOOST_TEST_INFO("column " << k);
+                    BOOST_TEST(std::stoull(v) > 0u);
+                    BOOST_TEST(std::stoull(v) <= std::stoull(row.at("phase_" + k.substr(6))));
+                    bsum += std::stoull(v);
+                }
+            BOOST_TEST(row.at("bound_forward") != "");
+            BOOST_TEST(bsum == std::stoull(row.at("bound_cycles")));
+            BOOST_TEST(std::stod(row.at("efficiency")) == double(bsum) / cyc,
+                       boost::test_tools::tolerance(1e-3));
         }
     }
     BOOST_TEST((seen == std::set<std::string>{"8/1024", "8/60", "16/1024", "16/60"}));
@@ -210,7 +225,8 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
     size_t data_lines = 0;
     std::istringstream dl(dat);
     for (std::string line; std::getline(dl, line);) data_lines += !line.empty() && line[0] != '#';
-    BOOST_TEST(data_lines == 2u);
+    BOOST_TEST(data_lines == 4u);  // the two points, and the machine's bound at each
+    BOOST_TEST(gp.find("machine bound") != std::string::npos);
     // Every ran row names its dominant phase, one of the phase columns.
     for (const auto& row : rows)
         if (row.at("status") == "ok") {

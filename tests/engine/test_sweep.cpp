@@ -224,6 +224,8 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     r.rows = {ran_row({"8"}, 2.0, {{"forward", 60000}, {"relayout_in", 20000}}),
               ran_row({"16"}, 1.0, {{"forward", 20000}, {"relayout_in", 20000}})};
     r.rows[1].run->area = eng::Area{4096, 262144};
+    r.rows[0].run->bounds = {{"forward", 30000}, {"relayout_in", 10000}};
+    r.rows[0].run->bound_cycles = 40000;
     r.phase_names = {"relayout_in", "forward"};
     const std::string csv = sw::to_csv(p, r);
     const std::string head = csv.substr(0, csv.find('\n'));
@@ -231,10 +233,19 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
                          "phase_relayout_in,phase_forward") != std::string::npos);
     BOOST_TEST(csv.find("forward,0.7500,,,20000,60000") != std::string::npos, csv);
     BOOST_TEST(csv.find(",4096,262144,") != std::string::npos, csv);
+    // The machine bound after the phases: the frame's, bound / cycles, then
+    // the bounded phases in the phases' order; empty where a row has none.
+    BOOST_TEST(head.find("phase_forward,bound_cycles,efficiency,bound_relayout_in,bound_forward") !=
+               std::string::npos);
+    BOOST_TEST(csv.find(",20000,60000,40000,0.5000,10000,30000\n") != std::string::npos, csv);
+    BOOST_TEST(csv.find(",20000,20000,,,,\n") != std::string::npos, csv);
     const auto j = sw::to_json(p, r);
     BOOST_TEST(j["rows"][0]["dominant_phase"] == "forward");
     BOOST_TEST(j["rows"][1]["area"]["cells"] == 4096);
     BOOST_TEST(!j["rows"][0].contains("area"));
+    BOOST_TEST(j["rows"][0]["bounds"]["forward"] == 30000);
+    BOOST_TEST(j["rows"][0]["efficiency"] == 0.5);
+    BOOST_TEST(!j["rows"][1].contains("bounds"));
     BOOST_TEST(r.exit_code(false) == 0);
     // The exit code: nothing ran is 5, a failed row is 5, interrupted 130.
     sw::Result none;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "imap/firmware/plan.hpp"
+#include "imap/firmware/run.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/machine.hpp"
 
@@ -151,6 +152,44 @@ inline void check_frame(const g::Params& p, const Frame& fr, const g::Roi& roi, 
                 BOOST_ERROR("(" << x << "," << y << "): firmware " << got << " golden " << exp);
         }
     BOOST_TEST(bad == 0);
+}
+
+// One frame of random lines (the same frame at every P) on the bare machine
+// core, required bit-exact with the golden; its plan and result.
+struct Measured {
+    fw::FramePlan plan;
+    fw::FrameResult r;
+};
+
+inline Measured run_on(const g::Params& p, int W, int H, const isa::MachineConfig& cfg,
+                       fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t seed = 0) {
+    std::mt19937 rng(seed ? seed : uint32_t(W * 131 + H * 7));  // the same frame at every P
+    const Frame fr = random_frame(rng, W, H, p.D);
+    const g::Roi roi{0, 0, W, H};
+    Measured m;
+    m.plan = fw::plan_frame(p, roi, cfg, layout);
+    const isa::Program prog = fw::assemble_frame(p, m.plan);
+    m.r = fw::run_frame_core(m.plan, prog, g::ImageView{fr.L.data(), W, H, W},
+                             g::ImageView{fr.R.data(), W, H, W}, cfg);
+    const g::DisparityMap want =
+        g::compute(p, g::ImageView{fr.L.data(), W, H, W}, g::ImageView{fr.R.data(), W, H, W}, roi);
+    BOOST_REQUIRE(m.r.map.data == want.data);  // every what-if point is bit-exact
+    return m;
+}
+
+inline Measured run_case(const g::Params& p, int W, int H, int P,  // NOLINT
+                         fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t mem = 0,
+                         uint32_t seed = 0) {
+    isa::MachineConfig cfg;
+    cfg.pes = P;
+    if (mem) cfg.mem_bytes = mem;
+    return run_on(p, W, H, cfg, layout, seed);
+}
+
+inline uint64_t phase(const fw::FrameResult& r, const std::string& name) {
+    for (const auto& [n, c] : r.phases)
+        if (n == name) return c;
+    return 0;
 }
 
 }  // namespace fwtest

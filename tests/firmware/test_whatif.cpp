@@ -15,44 +15,8 @@
 #include <map>
 
 #include "fw_test_util.hpp"
-#include "imap/firmware/run.hpp"
 
 using namespace fwtest;
-
-namespace {
-
-struct Measured {
-    fw::FramePlan plan;
-    fw::FrameResult r;
-};
-
-Measured run_case(const g::Params& p, int W, int H, int P,  // NOLINT
-                  fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t mem = 0,
-                  uint32_t seed = 0) {
-    std::mt19937 rng(seed ? seed : uint32_t(W * 131 + H * 7));  // the same frame at every P
-    const Frame fr = random_frame(rng, W, H, p.D);
-    isa::MachineConfig cfg;
-    cfg.pes = uint32_t(P);
-    if (mem) cfg.mem_bytes = mem;
-    const g::Roi roi{0, 0, W, H};
-    Measured m;
-    m.plan = fw::plan_frame(p, roi, cfg, layout);
-    const isa::Program prog = fw::assemble_frame(p, m.plan);
-    m.r = fw::run_frame_core(m.plan, prog, g::ImageView{fr.L.data(), W, H, W},
-                             g::ImageView{fr.R.data(), W, H, W}, cfg);
-    const g::DisparityMap want =
-        g::compute(p, g::ImageView{fr.L.data(), W, H, W}, g::ImageView{fr.R.data(), W, H, W}, roi);
-    BOOST_REQUIRE(m.r.map.data == want.data);  // every what-if point is bit-exact
-    return m;
-}
-
-uint64_t phase(const fw::FrameResult& r, const std::string& name) {
-    for (const auto& [n, c] : r.phases)
-        if (n == name) return c;
-    return 0;
-}
-
-}  // namespace
 
 BOOST_AUTO_TEST_CASE(relayout_within_twice_the_ring_bound_at_the_headline) {
     g::Params p;  // D = 64, bidir, vote on

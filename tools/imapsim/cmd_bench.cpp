@@ -46,6 +46,8 @@ struct ModelTimes {
     std::vector<double> wall_s;
     nlohmann::json phases;
     nlohmann::json relayout;  // measured re-layout cycles and the plan's lower bound
+    nlohmann::json bounds;    // the machine's bound per phase (docs/firmware.md 11)
+    uint64_t bound_cycles = 0;
 };
 
 // Runs `imapsim run --model M --report F` (the headline case is run's
@@ -72,6 +74,8 @@ ModelTimes time_model(const std::string& model, int runs) {
         t.wall_s.push_back(j.at("wall_s").get<double>());
         t.phases = j.at("phases");
         t.relayout = j.at("relayout");
+        t.bounds = j.at("bounds");
+        t.bound_cycles = j.at("bound_cycles").get<uint64_t>();
     }
     std::filesystem::remove(rep);
     t.available = true;
@@ -216,6 +220,14 @@ Subcommand register_bench(CLI::App& app) {
                         rl_in, bd_in, bd_in > 0 ? rl_in / bd_in : 0.0);
             std::printf("  re-layout out           %10.0f      (ring lower bound %.0f: %.2fx)\n",
                         rl_out, bd_out, bd_out > 0 ? rl_out / bd_out : 0.0);
+            std::printf("  phase / machine bound   ");
+            for (const auto& [ph, b] : tlm.bounds.items())
+                std::printf(" %s %.2fx", ph.c_str(),
+                            tlm.phases.value(ph, 0.0) / std::max(1.0, b.get<double>()));
+            std::printf("\n  machine bound           %10llu      (frame at %.1f%% of it)\n",
+                        static_cast<unsigned long long>(tlm.bound_cycles),
+                        100.0 * static_cast<double>(tlm.bound_cycles) /
+                            static_cast<double>(std::max<uint64_t>(1, tlm.cycles)));
             std::printf("  TLM wall                %10.4f s    (median)\n", tlm_wall);
             std::printf("  TLM modeled/wall        %10.2f      (>= 1: faster than the board)\n",
                         realtime);
@@ -274,6 +286,8 @@ Subcommand register_bench(CLI::App& app) {
                 j["phases"] = tlm.phases;
                 j["forward_cycles_per_state"] = fwd / per_pe;
                 j["relayout"] = tlm.relayout;
+                j["bounds"] = tlm.bounds;
+                j["bound_cycles"] = tlm.bound_cycles;
                 j["runs"] = o->runs;
                 j["simd_path"] = imap::isa::to_string(imap::isa::default_simd_path());
                 if (st.available) {

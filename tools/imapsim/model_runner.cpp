@@ -333,6 +333,7 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
         throw UserError(e.what());
     }
     const isa::Program prog = fw::assemble_frame(p, run.plan);
+    run.bounds = fw::frame_bounds(p, run.plan, cfg);
     run.program_words = prog.code.size();
     run.program = prog;
     run.source = fw::frame_source(p, run.plan);
@@ -512,12 +513,27 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
             cmp.differing, cmp.first_x, cmp.first_y, cmp.model_value, cmp.golden_value);
     std::printf("  cycles: %llu, modeled time %.3f ms at %g MHz\n",
                 static_cast<unsigned long long>(r.cycles), r.modeled_ms, cfg.clock_mhz);
-    std::printf("  phases:\n");
-    for (const auto& [name, cyc] : r.phases)
-        std::printf("    %-14s %10llu cycles  %5.1f%%  %8.3f ms\n", name.c_str(),
+    std::printf("  phases:                                                machine bound\n");
+    for (const auto& [name, cyc] : r.phases) {
+        std::printf("    %-14s %10llu cycles  %5.1f%%  %8.3f ms", name.c_str(),
                     static_cast<unsigned long long>(cyc),
                     100.0 * static_cast<double>(cyc) / static_cast<double>(r.cycles),
                     cfg.seconds(cyc) * 1e3);
+        const int64_t bound = run.bounds.of(name);
+        if (bound > 0)
+            std::printf("  %10lld  %6.2fx\n", static_cast<long long>(bound),
+                        static_cast<double>(cyc) / static_cast<double>(bound));
+        else
+            std::printf("           -\n");
+    }
+    const int64_t frame_bound = run.bounds.total();
+    std::printf(
+        "  machine bound: %lld cycles (%.3f ms), the frame at %.1f%% of it (bound / achieved); "
+        "forward %lld states x %lld cycles per node (docs/firmware.md 11)\n",
+        static_cast<long long>(frame_bound), cfg.milliseconds(static_cast<uint64_t>(frame_bound)),
+        100.0 * static_cast<double>(frame_bound) /
+            static_cast<double>(std::max<uint64_t>(1, r.cycles)),
+        static_cast<long long>(run.bounds.states), static_cast<long long>(run.bounds.node_cycles));
     const double util = r.stats.pe_cycles == 0
                             ? 0.0
                             : static_cast<double>(r.stats.active_lane_cycles) /
@@ -596,6 +612,14 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     nlohmann::json ph = nlohmann::json::object();
     for (const auto& [name, cyc] : r.phases) ph[name] = cyc;
     j["phases"] = ph;
+    nlohmann::json bd = nlohmann::json::object();
+    for (const fw::PhaseBound& b : run.bounds.phases) bd[b.phase] = b.cycles;
+    j["bounds"] = bd;
+    j["bound_cycles"] = run.bounds.total();
+    j["efficiency"] = static_cast<double>(run.bounds.total()) /
+                      static_cast<double>(std::max<uint64_t>(1, r.cycles));
+    j["bound_basis"] = {{"node_cycles", run.bounds.node_cycles},
+                        {"valid_states", run.bounds.states}};
     j["relayout"] = {{"in_cycles", r.relayout_in},
                      {"in_lower_bound", r.relayout_bound_in},
                      {"out_cycles", r.relayout_out},

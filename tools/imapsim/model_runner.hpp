@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "imap/firmware/bounds.hpp"
 #include "imap/firmware/plan.hpp"
 #include "imap/firmware/run.hpp"
 #include "imap/isa/config.hpp"
@@ -53,6 +54,8 @@ struct ModelRun {
     imap::isa::Program program;  // the program that ran
     std::string source;          // its generated source (constants, plan macros, .include of dp.s)
     imap::firmware::FrameResult result;
+    // The machine's bound of each phase (docs/firmware.md, section 11).
+    imap::firmware::FrameBounds bounds;
     // What the model itself reports, merged into the run report: "rtl"
     // (configuration, clocks), "lockstep" (instructions retired and
     // compared, both models' cycles, the first divergence).

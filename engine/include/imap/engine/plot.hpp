@@ -16,6 +16,9 @@ struct Series {
     std::string label;      // legend text (empty: no legend entry)
     std::vector<double> x;  // same length as y
     std::vector<double> y;
+    // The bound of another series (its index): drawn as a dashed line in
+    // that series' colour, without points.
+    int bound_of = -1;
 };
 
 struct HLine {

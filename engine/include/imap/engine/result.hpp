@@ -65,6 +65,10 @@ struct RunResult {
     std::vector<std::pair<std::string, uint64_t>> phases;  // in program order
     std::optional<Area> area;
     double pe_utilisation = 0;
+    // The machine's bound of each phase that has one, and of the frame
+    // (report keys "bounds", "bound_cycles"; docs/firmware.md section 11).
+    std::vector<std::pair<std::string, uint64_t>> bounds;
+    uint64_t bound_cycles = 0;
 
     double wall_s = 0;    // wall time of the child process
     std::string where;    // "local" or "slurm job 123_4 on node1"
@@ -77,6 +81,10 @@ struct RunResult {
     // The phase with the most cycles ("" without phases) and its share of the total.
     std::string dominant_phase() const;
     double dominant_share() const;
+    // The bound of `phase` (0 when it has none); bound / cycles of the frame
+    // (0 without a bound).
+    uint64_t bound_of(const std::string& phase) const;
+    double efficiency() const;
 };
 
 // One line saying how the run ended, e.g. "ok, bit-exact", "input error

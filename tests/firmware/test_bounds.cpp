@@ -1,0 +1,154 @@
+// The machine's bound of each phase (docs/firmware.md, section 11):
+//  - the node probe measures the forward node on the run's cost table (the
+//    node's instruction mix as docs/firmware.md section 2 lists it);
+//  - the forward, video and spill bounds count the work of the frame
+//    (valid states counted here by brute force, pointer bytes, lines);
+//  - no phase of any run (fixed cases and random parameter sets, batches,
+//    segments, spills, census and window options) is faster than its bound.
+#define BOOST_TEST_MODULE firmware_bounds
+#include <boost/test/unit_test.hpp>
+
+#include "fw_test_util.hpp"
+#include "imap/firmware/bounds.hpp"
+
+using namespace fwtest;
+
+namespace {
+
+// Valid states of one line, by brute force over (site, disparity): site i
+// matches i + d inside the line.
+int64_t brute_states(int N, int D) {
+    int64_t n = 0;
+    for (int i = 0; i < N; ++i)
+        for (int d = 0; d < D; ++d) n += i + d <= N - 1;
+    return n;
+}
+
+fw::FramePlan headline_plan(const isa::MachineConfig& cfg, const g::Params& p = g::Params{}) {
+    return fw::plan_frame(p, g::Roi{0, 0, 128, 128}, cfg);
+}
+
+// Every bounded phase of a run takes at least its bound.
+void check_bounds_hold(const g::Params& p, const Measured& m, const isa::MachineConfig& cfg) {
+    const fw::FrameBounds b = fw::frame_bounds(p, m.plan, cfg);
+    BOOST_TEST(!b.phases.empty());
+    for (const fw::PhaseBound& pb : b.phases) {
+        BOOST_TEST_CONTEXT("phase " << pb.phase << ": bound " << pb.cycles << ", measured "
+                                    << phase(m.r, pb.phase)) {
+            BOOST_TEST(pb.cycles > 0);
+            BOOST_TEST(uint64_t(pb.cycles) <= phase(m.r, pb.phase));
+        }
+    }
+    BOOST_TEST(uint64_t(b.total()) <= m.r.cycles);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(node_probe_measures_the_node) {
+    // The node at the defaults: 29 one-cycle instructions, of which 3 loads
+    // (b and the two bytes of Q) and 2 stores (docs/firmware.md section 2).
+    isa::MachineConfig cfg;
+    const g::Params p;
+    const fw::FramePlan plan = headline_plan(cfg);
+    BOOST_TEST(fw::node_cycles(p, plan, cfg) == 29);
+    isa::MachineConfig slow_mem = cfg;
+    slow_mem.costs.mem = 3;
+    BOOST_TEST(fw::node_cycles(p, plan, slow_mem) == 29 + 5 * 2);
+    isa::MachineConfig slow_alu = cfg;
+    slow_alu.costs.alu = 2;
+    BOOST_TEST(fw::node_cycles(p, plan, slow_alu) == 29 + 24);
+}
+
+BOOST_AUTO_TEST_CASE(bounds_count_the_work_of_the_frame) {
+    isa::MachineConfig cfg;  // 256 PEs
+    const g::Params p;       // D = 64, bidir, vote on
+    const int64_t states = 128 * brute_states(128, 64);
+    BOOST_TEST(states == 128 * 6176);
+    {
+        const fw::FrameBounds b = fw::frame_bounds(p, headline_plan(cfg), cfg);
+        BOOST_TEST(b.states == states);
+        BOOST_TEST(b.of("forward") == (states + 255) / 256 * 29);
+        BOOST_TEST(b.of("video_in") == 128 * 2);  // both images, one vin per line each
+        BOOST_TEST(b.of("video_out") == 128);
+        BOOST_TEST(b.of("spill") == -1);  // the pointers fit in the local memories
+        BOOST_TEST(b.of("relayout_in") == headline_plan(cfg).rl.bound_in);
+    }
+    {
+        isa::MachineConfig c = cfg;
+        c.pes = 64;  // two video segments per line
+        c.costs.video_line = 3;
+        const fw::FrameBounds b = fw::frame_bounds(p, headline_plan(c), c);
+        BOOST_TEST(b.of("video_in") == 128 * 2 * 2 * 3);
+        BOOST_TEST(b.of("video_out") == 128 * 2 * 3);
+        BOOST_TEST(b.of("forward") == (states + 63) / 64 * 29);
+    }
+    {
+        // D = 128 on 128-wide lines: 2 bits per state do not fit beside one
+        // column's 16-bit costs (2 x 128 bytes) in 256 x 1 KiB.
+        g::Params q;
+        q.D = 128;
+        const int64_t s = 128 * brute_states(128, 128);
+        const int64_t excess = (s + 3) / 4 - 256 * (1024 - 2 * 128);
+        BOOST_REQUIRE(excess > 0);
+        const fw::FrameBounds b = fw::frame_bounds(q, headline_plan(cfg, q), cfg);
+        BOOST_TEST(b.of("spill") == 2 * (8 + (excess + 7) / 8));
+    }
+}
+
+BOOST_AUTO_TEST_CASE(no_phase_runs_below_its_bound) {
+    struct C {
+        int W, H, D, P;
+        g::Mode mode;
+        uint32_t mem;
+    };
+    for (const C& c :
+         {C{128, 128, 64, 256, g::Mode::Bidir, 0}, C{128, 128, 64, 512, g::Mode::Bidir, 0},
+          C{128, 128, 128, 256, g::Mode::Bidir, 0}, C{32, 32, 16, 8, g::Mode::Bidir, 0},
+          C{32, 32, 32, 64, g::Mode::Bidir, 0}, C{64, 32, 32, 32, g::Mode::Single, 0},
+          C{64, 24, 32, 64, g::Mode::Single, 256}, C{48, 12, 12, 16, g::Mode::Joint, 0},
+          C{20, 9, 8, 5, g::Mode::Bidir, 0}}) {
+        g::Params p;
+        p.D = c.D;
+        p.mode = c.mode;
+        isa::MachineConfig cfg;
+        cfg.pes = c.P;
+        if (c.mem) cfg.mem_bytes = c.mem;
+        BOOST_TEST_CONTEXT("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P << " mode "
+                                << g::to_string(c.mode) << " mem " << cfg.mem_bytes) {
+            check_bounds_hold(p, run_on(p, c.W, c.H, cfg), cfg);
+        }
+    }
+    // The match-cost options: census, a window, Birchfield-Tomasi.
+    {
+        g::Params p;
+        p.D = 16;
+        p.kc = 4;
+        p.census = 1;
+        p.agg_rx = 1;
+        p.dissim = g::Dissim::Bt;
+        isa::MachineConfig cfg;
+        cfg.pes = 64;
+        BOOST_TEST_CONTEXT("census, agg-rx 1, bt") {
+            check_bounds_hold(p, run_on(p, 32, 16, cfg), cfg);
+        }
+    }
+    // Random parameter sets and machines.
+    std::mt19937 rng(2026);
+    for (int t = 0; t < 16; ++t) {
+        auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+        const int W = uni(8, 48), H = uni(2, 12);
+        const g::Params p = random_params(rng, W);
+        isa::MachineConfig cfg;
+        cfg.pes = uni(2, 6) * 8;
+        cfg.costs.mem = uni(1, 2);
+        cfg.costs.ring_hop = uni(1, 2);
+        cfg.costs.video_line = uni(1, 3);
+        BOOST_TEST_CONTEXT("random " << t << ": " << describe(p, W, H) << " P=" << cfg.pes) {
+            try {
+                check_bounds_hold(p, run_on(p, W, H, cfg), cfg);
+            } catch (const fw::FirmwareError& e) {
+                BOOST_TEST_MESSAGE("refused: " << e.what());
+            }
+        }
+    }
+}
