@@ -9,11 +9,10 @@
 //   firmware              the DP firmware on the unmutated 8-PE design with
 //                         every assertion checked: no assertion fails and
 //                         the map is the golden's
-//   report                a fault injected into the unmutated design (M of
-//                         PE 2 flipped through the backdoor right before an
-//                         xld) trips a_xfer_active in lockstep: the run stops
-//                         with the lockstep's report (instruction, cycle,
-//                         PC, assertion) and the waves of the cycles before
+//   report                the planted bug sub_mask trips a_pe_masked_wb in
+//                         lockstep: the run stops with the lockstep's report
+//                         (instruction, cycle, PC, PE, assertion) before the
+//                         compare of that edge
 //   rtl_report            the same on the RTL alone (run_rtl): an
 //                         AssertionFailure, an isa::Fault (imapsim: exit 3)
 #define BOOST_TEST_MODULE rtl_assert
@@ -25,66 +24,54 @@
 #include "rtl_test_util.hpp"
 
 using namespace rtltest;
-namespace fs = std::filesystem;
 
 namespace {
 
-// mask of PE 2 flipped after instruction 2 (li): the CP's cached count of
-// active PEs no longer matches the PEs' M bits when the xld starts
-const char* kXldProgram = R"(
-        cli c1, #4
-        cli c2, #0
-        li r0, #1
-        xld [#0], ext[c2], c1
-        halt
-)";
-
+// The mutation check's program 2 (seed 1002) with the planted bug sub_mask:
+// its sub at pc 71 (instruction 70) writes r1 back on masked PE 1.
 void run_report(bool lockstep) {
-    const isa::MachineConfig cfg = rtl_config(8);
-    const isa::Program prog = isa::assemble_string(kXldProgram, "xld.s");
-    const auto left = image(8, 1, 1), right = image(8, 1, 2);
-    const fs::path dir = fs::temp_directory_path() / ("rtl-assert-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const rtl::RandomProgram p = rtl::generate_program(1002);
     rtl::OutputImages out;
     if (lockstep) {
         rtl::LockstepConfig lc;
-        lc.rtl.inject = rtl::parse_fault_injection("2:2:M:1");
-        lc.divergence_waves = (dir / "assert.vcd").string();
+        lc.rtl.mutant = "sub_mask";
         lc.waves_cycles = 20;
-        const rtl::LockstepResult r = rtl::run_lockstep(cfg, prog, {}, left, right, 8, 1, &out, lc);
+        const rtl::LockstepResult r =
+            rtl::run_lockstep(p.cfg, p.prog, p.params, p.left, p.right, p.out_w, p.out_h, &out, lc);
         BOOST_REQUIRE(r.diverged);
         const rtl::Divergence& d = r.divergence;
         BOOST_TEST_MESSAGE(d.message());
-        BOOST_CHECK_EQUAL(d.assertion, "a_xfer_active");
-        BOOST_CHECK_EQUAL(d.instruction, 3u);  // the xld, in its first cycle
-        BOOST_CHECK_EQUAL(d.pc, 3u);
-        BOOST_CHECK_EQUAL(d.pe, -1);
-        BOOST_CHECK_GT(d.cycle, 0u);
-        BOOST_CHECK(d.message().rfind("RTL assertion a_xfer_active failed at instruction 3 (cycle ",
-                                      0) == 0);
-        BOOST_CHECK(d.message().find("pc 3: xld") != std::string::npos);
-        BOOST_CHECK(d.message().find("-> " + lc.divergence_waves) != std::string::npos);
-        BOOST_CHECK(fs::exists(lc.divergence_waves));
-        BOOST_CHECK(fs::exists(dir / "assert.gtkw"));
-        BOOST_CHECK(!fs::exists(lc.divergence_waves + ".part"));
-        // the RTL stopped at the failing edge: the xld never retired
-        BOOST_CHECK_EQUAL(r.instructions, 3u);
+        // the assertion, at the edge the sub commits: before the lockstep
+        // compare of what that edge retired
+        BOOST_CHECK_EQUAL(d.assertion, "a_pe_masked_wb");
+        BOOST_CHECK_EQUAL(d.instruction, 70u);
+        BOOST_CHECK_EQUAL(d.pc, 71u);
+        BOOST_CHECK_EQUAL(d.pe, 1);
+        BOOST_CHECK_GT(d.cycle, 70u);
+        BOOST_CHECK(d.message().rfind(
+                        "RTL assertion a_pe_masked_wb failed at instruction 70 (cycle ", 0) == 0);
+        BOOST_CHECK(d.message().find("pc 71: sub r1, r1, r4) in PE 1: a masked PE") !=
+                    std::string::npos);
+        // the mutation-check model has no traced variant: the report says so
+        BOOST_CHECK(d.waves.find("no waves") == 0);
+        // the RTL stopped at the failing edge: the sub (whose write-back
+        // the assertion caught) is the last instruction the design committed
+        BOOST_CHECK_EQUAL(r.instructions, 71u);
     } else {
         rtl::RtlConfig rc;
-        rc.inject = rtl::parse_fault_injection("2:2:M:1");
+        rc.mutant = "sub_mask";
         try {
-            rtl::run_rtl(cfg, prog, {}, left, right, 8, 1, &out, rc);
+            rtl::run_rtl(p.cfg, p.prog, p.params, p.left, p.right, p.out_w, p.out_h, &out, rc);
             BOOST_ERROR("no assertion failed");
         } catch (const rtl::AssertionFailure& e) {
             BOOST_TEST_MESSAGE(e.what());
-            BOOST_CHECK_EQUAL(e.assertion(), "a_xfer_active");
-            BOOST_CHECK_EQUAL(e.instruction(), 3u);
-            BOOST_CHECK_EQUAL(e.pc(), 3u);
-            BOOST_CHECK_EQUAL(e.pe(), isa::Fault::kNone);
-            BOOST_CHECK(std::string(e.what()).find("RTL assertion a_xfer_active failed") == 0);
+            BOOST_CHECK_EQUAL(e.assertion(), "a_pe_masked_wb");
+            BOOST_CHECK_EQUAL(e.instruction(), 70u);
+            BOOST_CHECK_EQUAL(e.pc(), 71u);
+            BOOST_CHECK_EQUAL(e.pe(), 1);
+            BOOST_CHECK(std::string(e.what()).find("RTL assertion a_pe_masked_wb failed") == 0);
         }
     }
-    fs::remove_all(dir);
 }
 
 }  // namespace
