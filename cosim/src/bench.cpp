@@ -362,7 +362,12 @@ void Bench::clock() {
         }
     }
     if (level_) {
-        if (pending_ || pending_fault_) {
+        if ((pending_ || pending_fault_) && job_ && job_->assertion.valid) {
+            // an assertion failed at this edge: it is the report, not what
+            // the edge retired (the job stops)
+            pending_ = pending_fault_ = false;
+            processed_ev_.notify(sc_core::SC_ZERO_TIME);
+        } else if (pending_ || pending_fault_) {
             if (!process_pending()) {
                 const sc_core::sc_event* ev =
                     job_ && job_->listener ? job_->listener->wake_event() : nullptr;
@@ -376,6 +381,9 @@ void Bench::clock() {
         s.ports->clk = false;
         level_ = false;
     } else {
+        pre_mcycle_ = *s.bd.mcycle;
+        pre_instret_ = *s.bd.instret;
+        pre_pc_ = *s.bd.x_pc;
         s.ports->clk = true;
         level_ = true;
         ++clocks_;
@@ -408,6 +416,21 @@ void Bench::dpi_fault(const FaultRecord& f) {
     fault_rec_ = f;
     fault_rec_.index = *bd_.instret;
     pending_fault_ = true;
+}
+
+void Bench::dpi_assert(const char* name, int pe) {
+    // the first failure of a running job stops it; later ones (the design
+    // runs on for a clock or two while the job winds down) are not news
+    if (!job_ || job_->assertion.valid) return;
+    AssertionRecord& a = job_->assertion;
+    a.valid = true;
+    a.name = name ? name : "?";
+    a.pe = pe;
+    a.cycle = pre_mcycle_;
+    a.index = pre_instret_;
+    a.pc = pre_pc_ & 0xFFFFFFu;
+    stop_ = true;
+    finished_ev_.notify(sc_core::SC_ZERO_TIME);
 }
 
 int Bench::dpi_vid_check(int dir_out, int port, int y) {

@@ -79,6 +79,18 @@ enum FaultCode {
 };
 const char* fault_code_name(int code);
 
+// A failing assertion of the design (imap_dpi_pkg::imap_rtl_assert, docs/rtl.md
+// "Assertions"): the first of a job stops it. cycle, pc and index are the
+// machine's at the failing edge (before it: the machine cycle in progress,
+// the instruction in execute and its execution index).
+struct AssertionRecord {
+    bool valid = false;
+    std::string name;
+    int64_t pe = -1;  // -1: the CP, array-wide
+    uint64_t cycle = 0, index = 0;
+    uint32_t pc = 0;
+};
+
 // The CP state as reported by the trace port (retire records, param
 // writes). The PE state (registers, flags, local and external memory) is not
 // reported: the checker reads it from the design through the Backdoor.
@@ -140,6 +152,7 @@ struct Job {
     // results
     bool halted = false, stopped = false;
     FaultRecord fault;
+    AssertionRecord assertion;  // the first failing assertion (it stopped the job)
     uint64_t cycles = 0, instructions = 0, clocks = 0;
     std::string error;  // testbench-level failure (model stopped making progress, ...)
     double wall_s = 0;
@@ -180,6 +193,7 @@ class Bench : public sc_core::sc_module {
     void dpi_retire(const RetireRecord& r);
     void dpi_param(int addr, uint32_t v);
     void dpi_fault(const FaultRecord& f);
+    void dpi_assert(const char* name, int pe);
     int dpi_vid_check(int dir_out, int port, int y);
     int dpi_vid_pixel(int port, int y, int x);
     void dpi_vid_put(int port, int y, int x, int v);
@@ -220,6 +234,9 @@ class Bench : public sc_core::sc_module {
     bool level_ = false;
     uint64_t half_ps_ = 12500;
     uint64_t clocks_ = 0;
+    // the machine before the rising edge being evaluated (assertion reports)
+    uint64_t pre_mcycle_ = 0, pre_instret_ = 0;
+    uint32_t pre_pc_ = 0;
     uint64_t last_progress_ = 0, last_mcycle_ = 0, last_instret_ = 0;
     uint64_t cycle_budget_ = UINT64_MAX;
     bool waves_on_ = false;

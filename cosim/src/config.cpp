@@ -106,6 +106,57 @@ const std::vector<Mutant>& mutants() {
     return m;
 }
 
+const std::vector<Assertion>& assertions() {
+    // as labelled in rtl_model/hdl (imap_assert.svh, docs/rtl.md "Assertions")
+    static const std::vector<Assertion> a = {
+        {"a_pe_masked_wb", "imap_pe", "a masked PE writes no register and no memory byte back"},
+        {"a_pe_masked_row", "imap_pe", "xld writes its rows on the active PEs only"},
+        {"a_pe_mask_nest", "imap_pe",
+         "after mif / melse a PE is active only if it was active where the block opened"},
+        {"a_pe_preload", "imap_pe",
+         "a preload (ring source, per-PE address, vout / xst rows) sees the registers and "
+         "memory as the same edge leaves them (write-back bypass)"},
+        {"a_ring_rotate", "imap_array",
+         "after a ring hop every PE holds its neighbour's previous ring value (the ring wraps)"},
+        {"a_maskbus_status", "imap_array", "rany / rall reduce T over exactly the active PEs"},
+        {"a_maskbus_memx", "imap_array",
+         "the ldx / stx address check names an active PE out of range, exactly when one exists"},
+        {"a_cw_legal", "imap_cp",
+         "the control word of an instruction cycle is a legal one (function, mask command, "
+         "register writes, shifter / ring steps)"},
+        {"a_cw_row_legal", "imap_cp", "a row-bus operation names 1..XROWS rows"},
+        {"a_mask_ovf", "imap_cp", "mif commits only below the configured mask-stack depth"},
+        {"a_mask_unf", "imap_cp", "melse / mend commit only on a non-empty mask stack"},
+        {"a_call_ovf", "imap_cp", "call commits only below the configured return-stack depth"},
+        {"a_call_unf", "imap_cp", "ret commits only on a non-empty return stack"},
+        {"a_stack_depth", "imap_cp",
+         "the mask / return stack depths stay within the configuration"},
+        {"a_cp_operands", "imap_cp",
+         "the CP operands taken in decode (cA, cB, cB + off) equal the register file once the "
+         "instructions before have committed (forwarding)"},
+        {"a_cp_refill", "imap_cp",
+         "a taken branch is followed by branch_taken refill bubbles before the next instruction "
+         "executes"},
+        {"a_cp_stopped", "imap_cp", "a halted or faulted machine retires nothing more"},
+        {"a_xfer_local", "imap_cp",
+         "xld writes local rows inside the transfer's range, which is inside the local memory"},
+        {"a_xfer_ext", "imap_cp",
+         "xst writes external rows inside the transfer's range, which is inside the external "
+         "memory"},
+        {"a_xfer_rows", "imap_cp", "a transfer that moves bytes moves all its rows (cD)"},
+        {"a_xfer_active", "imap_top",
+         "the transfer engine's active-PE count equals the PEs whose M the row interface "
+         "carries (xe_pm)"},
+    };
+    return a;
+}
+
+std::string assertion_what(const std::string& name) {
+    for (const Assertion& a : assertions())
+        if (name == a.name) return a.what;
+    return "";
+}
+
 uint32_t mutant_id(const std::string& name) {
     if (name == "none") return 0;  // the mutation-check model, no bug selected
     std::string known = "none";

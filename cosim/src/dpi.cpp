@@ -53,6 +53,10 @@ void imap_rtl_fault(int code, int pc, long long cyc, int pe, long long addr) {
     g_bench->dpi_fault(f);
 }
 
+void imap_rtl_assert(const char* name, int pe) {
+    if (g_bench) g_bench->dpi_assert(name, pe);
+}
+
 int imap_rtl_vid_check(int dir_out, int port, int y) {
     return g_bench ? g_bench->dpi_vid_check(dir_out, port, y) : 1;
 }

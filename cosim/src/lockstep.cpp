@@ -12,6 +12,14 @@ namespace imap::rtl {
 
 std::string Divergence::message() const {
     std::ostringstream o;
+    if (!assertion.empty()) {
+        o << "RTL assertion " << assertion << " failed at instruction " << instruction << " (cycle "
+          << cycle << ", pc " << pc << ": " << disassembly << ")";
+        if (pe >= 0) o << " in PE " << pe;
+        o << ": " << what;
+        if (!waves.empty()) o << "; " << waves;
+        return o.str();
+    }
     o << "lockstep divergence at instruction " << instruction << " (cycle " << cycle << ", pc "
       << pc << ": " << disassembly << "): " << what;
     if (pe >= 0) o << " of PE " << pe;
@@ -82,6 +90,10 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     RtlRunResult rres;
     bench.job_done = [&](Job& j) {
         rres = collect(j, bench, cfg, prog);
+        if (j.assertion.valid && !chk.diverged) {
+            chk.diverged = true;
+            chk.div = assertion_divergence(j.assertion, prog);
+        }
         if (!chk.diverged) return;
         if (!replay) {
             if (wpath.empty())

@@ -1003,6 +1003,10 @@ SuiteResult run_random_suite(const SuiteOptions& opt) {
     bench.next_job = [&]() -> Job* {
         if (++index >= opt.programs || (opt.stop_at_divergence && res.caught)) return nullptr;
         cur = generate_program(opt.seed + static_cast<uint64_t>(index), opt.gen);
+        job = Job();
+        fill_job(job, cur.cfg, cur.prog, cur.params, cur.left, cur.right, cur.out_w, cur.out_h);
+        job.mutant = mut;
+        if (!opt.lockstep) return &job;  // the RTL alone (its assertions)
         ref = std::make_unique<StepReference>(cur.cfg, cur.prog, cur.params, cur.left, cur.right,
                                               cur.out_w, cur.out_h);
         chk = std::make_unique<Checker>(*ref, cur.prog, cur.cfg.pes);
@@ -1014,14 +1018,38 @@ SuiteResult run_random_suite(const SuiteOptions& opt) {
             active_before = m.active_pes();
             depth_before = m.mask_stack_size();
         };
-        job = Job();
-        fill_job(job, cur.cfg, cur.prog, cur.params, cur.left, cur.right, cur.out_w, cur.out_h);
         job.listener = chk.get();
-        job.mutant = mut;
         return &job;
     };
     bench.job_done = [&](Job& j) {
         ++res.programs;
+        if (j.assertion.valid || !opt.lockstep) {
+            // an assertion of the design failed (it stopped the program),
+            // or the RTL alone ran: a failure only if an assertion failed
+            // or the testbench gave up
+            const uint64_t n = j.instructions;
+            if (j.assertion.valid || !j.error.empty()) {
+                const std::string msg =
+                    "program " + std::to_string(index) + " (seed " + std::to_string(cur.seed) +
+                    ", ends with " + cur.ending + "): " +
+                    (j.assertion.valid ? assertion_divergence(j.assertion, cur.prog).message()
+                                       : j.error);
+                res.failures.push_back(msg);
+                if (!res.caught) {
+                    res.caught = true;
+                    res.caught_program = index;
+                    res.caught_instruction = j.assertion.valid ? j.assertion.index : n;
+                    res.instructions_to_catch = res.instructions + res.caught_instruction + 1;
+                    res.caught_message = msg;
+                    res.caught_assertion = j.assertion.valid ? j.assertion.name : "";
+                }
+            } else {
+                ++res.passed;
+            }
+            res.instructions += n;
+            res.cycles += j.cycles;
+            return;
+        }
         if (!chk->diverged && j.error.empty())
             chk->final_check(j, bench.shadow(), bench.backdoor());
         if (!chk->diverged && j.error.empty())

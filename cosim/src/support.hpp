@@ -7,6 +7,7 @@
 
 #include "bench.hpp"
 #include "imap/rtl/config.hpp"
+#include "imap/rtl/lockstep.hpp"
 #include "imap/rtl/system.hpp"
 
 namespace imap::rtl::detail {
@@ -22,6 +23,9 @@ void fill_job(Job& j, const isa::MachineConfig& cfg, const isa::Program& prog,
 // The run's result from the job and the design's counters and state.
 RtlRunResult collect(const Job& j, const Bench& b, const isa::MachineConfig& cfg,
                      const isa::Program& prog);
+// The report of a failing assertion in the lockstep's form (a Divergence
+// with `assertion` set; disassembly from prog).
+Divergence assertion_divergence(const AssertionRecord& a, const isa::Program& prog);
 // XOR a fault into the design's state (backdoor).
 void inject(Backdoor& bd, const FaultInjection& f);
 // After the wave writer closed: make the file reproducible (the FST

@@ -1,4 +1,5 @@
 #include "imap/rtl/system.hpp"
+#include "imap/isa/assembler.hpp"
 #include "imap/tlm/sanitizer.hpp"
 
 #include <cstring>
@@ -137,6 +138,29 @@ class Injector final : public Listener {
     FaultInjection f_;
 };
 
+Divergence assertion_divergence(const AssertionRecord& a, const isa::Program& prog) {
+    Divergence d;
+    d.assertion = a.name;
+    d.instruction = a.index;
+    d.cycle = a.cycle;
+    d.pc = a.pc;
+    d.pe = a.pe;
+    d.reference = "";
+    if (a.pc < prog.code.size()) {
+        d.word = prog.code[a.pc];
+        try {
+            d.disassembly = isa::disassemble_word(d.word);
+        } catch (const std::exception&) {
+            d.disassembly = ".word";
+        }
+    } else {
+        d.disassembly = "no instruction in execute";
+    }
+    const std::string w = assertion_what(a.name);
+    d.what = w.empty() ? "(unknown assertion)" : w;
+    return d;
+}
+
 void inject(Backdoor& bd, const FaultInjection& f) {
     const size_t p = static_cast<size_t>(f.pe);
     if (f.reg >= 0)
@@ -235,6 +259,10 @@ RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
                                                    // threads)
     if (!job.error.empty()) throw std::runtime_error("RTL testbench: " + job.error);
     if (job.waves_written) finish_waves(job, bench, cfg, "dut", rcfg.waves.pes);
+    if (job.assertion.valid) {
+        const Divergence d = assertion_divergence(job.assertion, prog);
+        throw AssertionFailure(d.message(), d.assertion, d.instruction, d.pc, d.pe, d.cycle);
+    }
     if (job.fault.valid) throw to_fault(job.fault, prog, cfg);
     if (out) {
         out->image[0] = job.output[0];

@@ -1,4 +1,5 @@
 `include "imap_mutants.svh"
+`include "imap_assert.svh"
 // The PE array: P PE modules, the shift ring as wires between neighbours
 // (PE p's ring register drives the nb_hi input of PE p-1 and the nb_lo input
 // of PE p+1; PE 0 and PE P-1 close the ring), the mask bus (status
@@ -95,5 +96,53 @@ module imap_array
   for (genvar p = 0; p < P; p++) begin : g_pm
     assign xe_pm[p] = st[p][0] | `IMAP_MUT(15);
   end
+
+`ifndef SYNTHESIS
+  // ---- assertions (docs/rtl.md, "Assertions")
+  // The ring rotates: after a hop every PE's ring register holds what its
+  // neighbour's held before it (rxl: PE p-1's, rxr: PE p+1's; PE 0 and PE
+  // P-1 close the ring). Checked at the edge after the hop (a hop at the
+  // edge where the next ring instruction preloads its source is left out).
+  // The mask bus: rany / rall reduce T over exactly the active PEs; an
+  // ldx / stx address fault names an active PE whose address is out of
+  // range, and there is one exactly when such a PE exists.
+  logic hop_q, hop_up_q;
+  logic [7:0] ring_prev[P];
+  int n_act, n_t;
+  logic bad_any, named_ok;
+  always_ff @(posedge clk) begin
+    hop_q <= cw.act && cw.step && cw.fn == imap_pkg::F_RING && cw.pre != imap_pkg::PRE_RING &&
+        !cw.clr;
+    hop_up_q <= cw.up;
+    if (cw.act && cw.step && cw.fn == imap_pkg::F_RING) ring_prev <= ring;
+    if (hop_q)
+      for (int p = 0; p < P; p++)
+        a_ring_rotate :
+        assert (ring[p] == ring_prev[hop_up_q ? (p + P - 1) % P : (p + 1) % P])
+        else `IMAP_FAIL(a_ring_rotate, p);
+    if (red_status) begin
+      n_act = 0;
+      n_t = 0;
+      for (int p = 0; p < P; p++) begin
+        if (st[p][0]) n_act = n_act + 1;
+        if (st[p][0] && st[p][1]) n_t = n_t + 1;
+      end
+      a_maskbus_status :
+      assert (all_t == (n_t == n_act) && any_t == (n_t != 0))
+      else `IMAP_FAIL(a_maskbus_status, -1);
+    end
+    if (red_memx) begin
+      bad_any = 1'b0;
+      named_ok = 1'b0;
+      for (int p = 0; p < P; p++) begin
+        bad_any = bad_any | (st[p][2] & st[p][0]);
+        if (32'(memx_pe) == p) named_ok = st[p][2] & st[p][0];
+      end
+      a_maskbus_memx :
+      assert (memx_bad == bad_any && (!memx_bad || named_ok))
+      else `IMAP_FAIL(a_maskbus_memx, memx_bad ? int'(memx_pe) : -1);
+    end
+  end
+`endif
 
 endmodule

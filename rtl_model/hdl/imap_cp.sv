@@ -1,4 +1,5 @@
 `include "imap_mutants.svh"
+`include "imap_assert.svh"
 // The control processor (docs/isa.md 1.2, 3, 4): a three-stage pipeline
 //
 //   F  fetch      instruction memory read (registered), PC sequencing, the
@@ -936,5 +937,115 @@ module imap_cp
       end
     end
   end
+
+`ifndef SYNTHESIS
+  // ===========================================================================
+  // Assertions (docs/rtl.md, "Assertions"): read-only checks of the CP's
+  // invariants, sampled at each rising edge (the values of the cycle ending
+  // there). They change nothing the design computes.
+  // ===========================================================================
+  logic cw_ok;
+  logic [31:0] a_base;
+  always_ff @(posedge clk)
+    if (rst_n) begin
+      // ---- control-word legality: what the PEs are told to do in a cycle
+      // of an instruction is one of the things they can do
+      if (run_q && (cw.commit || cw.step || cw.first) &&
+          !(x_v && x_first && x_flt != imap_pkg::FLT_NONE)) begin
+        cw_ok = !cw.clr && cw.fn <= imap_pkg::F_RING &&
+            cw.mask <= imap_pkg::MK_ALL && cw.sbits != 3'd0;
+        if (cw.rd_we || cw.c_we || cw.t_we) cw_ok = cw_ok && cw.mask == imap_pkg::MK_NONE;
+        if (cw.rd_we) cw_ok = cw_ok && 8'(cw.rd) < cfg_pe_regs && 32'(cw.rd) < NREGS;
+        if (cw.step) cw_ok = cw_ok && (cw.fn == imap_pkg::F_SHL || cw.fn == imap_pkg::F_SHR ||
+                                       cw.fn == imap_pkg::F_RING);
+        if (cw.first) cw_ok = cw_ok && (cw.fn == imap_pkg::F_SHL || cw.fn == imap_pkg::F_SHR);
+        a_cw_legal :
+        assert (cw_ok)
+        else `IMAP_FAIL(a_cw_legal, -1);
+      end
+      if (cw.row != imap_pkg::ROW_NONE)
+        a_cw_row_legal :
+        assert (cw.row != 2'd3 && 32'(cw.nrows) <= XROWS &&
+                (cw.row != imap_pkg::ROW_WRITE || cw.nrows != 4'd0))
+        else `IMAP_FAIL(a_cw_row_legal, -1);
+
+      // ---- the mask and return stacks: an instruction that would overflow
+      // or underflow them faults before it commits (docs/isa.md 4.1)
+      if (x_commit)
+        case (x_op)
+          imap_pkg::OP_MIF:
+          a_mask_ovf :
+          assert (msp < cfg_mask_depth && 32'(msp) < MASK_DEPTH)
+          else `IMAP_FAIL(a_mask_ovf, -1);
+          imap_pkg::OP_MELSE, imap_pkg::OP_MEND:
+          a_mask_unf :
+          assert (msp != 9'd0)
+          else `IMAP_FAIL(a_mask_unf, -1);
+          imap_pkg::OP_CALL:
+          a_call_ovf :
+          assert (csp < cfg_call_depth && 32'(csp) < CALL_DEPTH)
+          else `IMAP_FAIL(a_call_ovf, -1);
+          imap_pkg::OP_RET:
+          a_call_unf :
+          assert (csp != 9'd0)
+          else `IMAP_FAIL(a_call_unf, -1);
+          default: ;
+        endcase
+
+      // ---- decode's forwarding: the CP operands an instruction took in D
+      // (cA, cB and the address cB + off) are the register file's values
+      // once everything before it has committed, i.e. in its first cycle
+      if (x_v && x_first && run_q) begin
+        a_base = (x_ir[31:24] == 8'd128) ? 32'h0 : creg[x_ir[27:24]];
+        a_cp_operands :
+        assert (x_b == creg[x_ir[27:24]] && x_addr == a_base + x_ir[63:32] &&
+                x_a == creg[(x_op == imap_pkg::OP_CST) ? x_ir[11:8] : x_ir[19:16]])
+        else `IMAP_FAIL(a_cp_operands, -1);
+      end
+
+      // ---- the transfer engine (xld / xst)
+      if (x_v && run_q && x_kind == imap_pkg::K_XFER) begin
+        // rows written into / read from the local memory stay inside the
+        // transfer's range [cB + off, + len), which is inside the memory
+        if (cw.row == imap_pkg::ROW_WRITE)
+          a_xfer_local :
+          assert (64'(x_addr) + 64'(x_len) <= 64'(MEM_BYTES) &&
+                  64'(cwx.addr) + 64'(cw.nrows) <= 64'(x_addr) + 64'(x_len) &&
+                  64'(cwx.addr) >= 64'(x_addr))
+          else `IMAP_FAIL(a_xfer_local, -1);
+        // rows written into the external memory: inside [cA, + len), inside it
+        if (xe_wr)
+          a_xfer_ext :
+          assert (64'(x_ebase) + 64'(x_len) <= 64'(EXT_BYTES) &&
+                  64'(xe_wrow) + 64'(xe_n) <= 64'(x_ebase) + 64'(x_len) &&
+                  xe_wrow >= x_ebase)
+          else `IMAP_FAIL(a_xfer_ext, -1);
+        // a transfer that moves bytes moves all its rows: at its last data
+        // cycle the rows done are its length
+        if (x_commit && !x_zn && !x_setup)
+          a_xfer_rows :
+          assert (x_rows == x_len)
+          else `IMAP_FAIL(a_xfer_rows, -1);
+      end
+    end
+
+  // ---- the pipeline: a taken branch is followed by c_branch_taken refill
+  // bubbles (X empty, the bubble counter loaded) before the next
+  // instruction enters execute; a halted or faulted machine retires
+  // nothing more; the stack depths stay within the configuration
+  a_cp_refill :
+  assert property (@(posedge clk) disable iff (!rst_n)
+                   (x_commit && x_taken && c_branch_taken != 32'd0) |=>
+                   (!x_v && bub == c_branch_taken))
+  else `IMAP_FAIL(a_cp_refill, -1);
+  a_cp_stopped :
+  assert property (@(posedge clk) disable iff (!rst_n)
+                   !(halted && faulted) && !((halted || faulted) && x_commit))
+  else `IMAP_FAIL(a_cp_stopped, -1);
+  a_stack_depth :
+  assert property (@(posedge clk) disable iff (!rst_n)
+                   msp <= cfg_mask_depth && csp <= cfg_call_depth)
+  else `IMAP_FAIL(a_stack_depth, -1);
+`endif
 
 endmodule

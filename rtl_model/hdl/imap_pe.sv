@@ -1,4 +1,5 @@
 `include "imap_mutants.svh"
+`include "imap_assert.svh"
 // One processing element (docs/isa.md 1.1, 4, 4.1): register file, 8-bit
 // adder with carry, comparator and min/max, the shifter, the C / T / M flags,
 // the mask stack, write-back gated by M, and the local memory with its port
@@ -71,6 +72,9 @@ module imap_pe
   logic [AW-1:0] ma, pa, d;
   logic [33:0] xa;
   logic [XROWS*8-1:0] prow;
+`ifndef SYNTHESIS
+  logic pre_ok;  // a_pe_preload
+`endif
 
   always_ff @(posedge clk) begin
 
@@ -219,10 +223,28 @@ module imap_pe
         if (!(act && w.t_we)) tn = st_q[ST];
         if (mwe) mem[ma] = mval;
         st_q <= {st_q[SOOB], tn, mn};
+`ifndef SYNTHESIS
+        // a masked PE writes nothing back: no register, no memory byte
+        a_pe_masked_wb :
+        assert (act || !(wb || mwe))
+        else `IMAP_FAIL(a_pe_masked_wb, pe_index);
+        // mif / melse: a PE is active inside the block only if it was
+        // active where the block opened (the saved M on top of the stack)
+        if (w.mask == imap_pkg::MK_IF || w.mask == imap_pkg::MK_ELSE)
+          a_pe_mask_nest :
+          assert (!mn || mstk[0])
+          else `IMAP_FAIL(a_pe_mask_nest, pe_index);
+`endif
       end
 
       // ---- 4. row bus: rows written (vin on every PE, xld on the active PEs)
       rw = (w.row == imap_pkg::ROW_WRITE) && (!w.rowm || st_q[SM] || `IMAP_MUT(13));
+`ifndef SYNTHESIS
+      // xld writes its rows on the active PEs only
+      a_pe_masked_row :
+      assert (!(rw && w.rowm) || st_q[SM])
+      else `IMAP_FAIL(a_pe_masked_row, pe_index);
+`endif
       if (rw)
         for (int i = 0; i < XROWS; i++)
           if (4'(i) < w.nrows) begin
@@ -239,6 +261,20 @@ module imap_pe
           else if (rw && d < AW'(w.nrows)) prow[i*8+:8] = row_in[d*8+:8];
         end
         row_q <= prow;
+`ifndef SYNTHESIS
+        // the preloads see the registers and the memory as this edge leaves
+        // them (the write-back bypass): ring source, per-PE address bytes,
+        // the rows of vout / xst
+        pre_ok = 1'b1;
+        if (w.pre == imap_pkg::PRE_RING || w.pre == imap_pkg::PRE_ADDR)
+          pre_ok = lo == regs[wx.pre_ra[RW-1:0]];
+        if (w.pre == imap_pkg::PRE_ADDR && !w.pre_nohi)
+          pre_ok = pre_ok && hi == regs[wx.pre_rb[RW-1:0]];
+        for (int i = 0; i < XROWS; i++) pre_ok = pre_ok && prow[i*8+:8] == mem[pa+AW'(i)];
+        a_pe_preload :
+        assert (pre_ok)
+        else `IMAP_FAIL(a_pe_preload, pe_index);
+`endif
         case (w.pre)
           imap_pkg::PRE_RING: ring_q <= lo;
           imap_pkg::PRE_ADDR: begin

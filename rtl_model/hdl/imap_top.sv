@@ -1,4 +1,5 @@
 `include "imap_mutants.svh"
+`include "imap_assert.svh"
 // IMAP-VISION array, top level of the register-transfer design (the chip):
 // the control processor, the PE array (P PEs with the ring and the mask bus)
 // and the performance counters. The board (external memory, video port) is
@@ -183,5 +184,18 @@ module imap_top
   imap_perf #(.PHASES(PHASES)) u_perf (.*);
 
   assign done = halted | faulted;
+
+`ifndef SYNTHESIS
+  // ---- assertion (docs/rtl.md, "Assertions"): the transfer engine counts
+  // the bytes of the active PEs, and the row interface writes the external
+  // memory of the active PEs: in the first cycle of an xld / xst, the CP's
+  // count of active PEs (its cached mask-bus count) is the number of PEs
+  // whose M bit the row interface carries (xe_pm)
+  always_ff @(posedge clk)
+    if (rst_n && u_cp.x_v && u_cp.x_first && u_cp.run_q && u_cp.x_kind == imap_pkg::K_XFER)
+      a_xfer_active :
+      assert (32'(u_cp.xa_now) == $countones(xe_pm))
+      else `IMAP_FAIL(a_xfer_active, -1);
+`endif
 
 endmodule

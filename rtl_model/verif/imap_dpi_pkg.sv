@@ -1,5 +1,7 @@
 // The testbench's DPI-C imports (verification only; the design in
-// rtl_model/hdl has none): the trace port (the CP's retire record and
+// rtl_model/hdl calls one, imap_rtl_assert, and only through the
+// IMAP_ASSERT_HOOK define of its assertion macro, imap_assert.svh): the
+// trace port (the CP's retire record and
 // param-block writes, reported by the retire monitor imap_cp_monitor.sv
 // bound into the CP), the fault report (same monitor) and the video line
 // port of the board model (imap_board.sv: camera / display). Each is
@@ -21,6 +23,10 @@ package imap_dpi_pkg;
   // The fault that stopped the machine (code: imap_pkg::fault_t).
   import "DPI-C" function void imap_rtl_fault(
     input int code, input int pc, input longint cyc, input int pe, input longint addr);
+
+  // A failing assertion of the design (rtl_model/hdl/imap_assert.svh, with
+  // IMAP_ASSERT_HOOK): its name and the PE (-1: the CP, array-wide).
+  import "DPI-C" function void imap_rtl_assert(input string name, input int pe);
 
   // Video line port: status 0 = ok, 1 = no image on that port, 2 = line
   // outside the image. vid_check is asked when vin / vout enters execute;

@@ -56,6 +56,7 @@ struct Backdoor {
     uint16_t* phase = nullptr;
     uint64_t* instret = nullptr;
     uint64_t* mcycle = nullptr;
+    uint32_t* x_pc = nullptr;  // PC of the instruction in execute
     uint8_t* halted = nullptr;
     uint8_t* faulted = nullptr;
     uint8_t* f_code = nullptr;

@@ -3,6 +3,7 @@
 // the generated per-configuration factories (rtl_model/CMakeLists.txt).
 #pragma once
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -67,7 +68,13 @@ struct TraceOn {
 template <class V, int Trace>
 class ModelImpl final : private TraceOn<Trace>, public Model {
   public:
-    explicit ModelImpl(const char* name) : dut_(name) {}
+    explicit ModelImpl(const char* name) : dut_(name) {
+        // IMAP_RTL_ASSERTIONS=0: the design's assertions are not evaluated
+        // (Verilator's run-time switch: to measure what they cost,
+        // docs/rtl.md "Assertions")
+        const char* a = std::getenv("IMAP_RTL_ASSERTIONS");
+        if (a && std::string(a) == "0") Verilated::assertOn(false);
+    }
     ~ModelImpl() override {
         trace_close();
         write_coverage();  // coverage build only
@@ -134,6 +141,7 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
         b.phase = static_cast<uint16_t*>(var(cp, "phase_q", 2));
         b.instret = static_cast<uint64_t*>(var(cp, "instret", 8));
         b.mcycle = static_cast<uint64_t*>(var(cp, "mcycle", 8));
+        b.x_pc = static_cast<uint32_t*>(var(cp, "x_pc", 4));
         b.halted = static_cast<uint8_t*>(var(cp, "halted", 1));
         b.faulted = static_cast<uint8_t*>(var(cp, "faulted", 1));
         b.f_code = static_cast<uint8_t*>(var(cp, "f_code", 1));

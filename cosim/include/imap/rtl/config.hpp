@@ -47,6 +47,17 @@ const std::vector<Mutant>& mutants();
 // Throws isa::ConfigError for an unknown name (listing the known ones).
 uint32_t mutant_id(const std::string& name);
 
+// The design's assertions (docs/rtl.md, "Assertions"; rtl_model/hdl,
+// checked in every verilated configuration): name, where, what it checks.
+struct Assertion {
+    const char* name;
+    const char* where;  // the design unit ("imap_pe", "imap_cp", ...)
+    const char* what;
+};
+const std::vector<Assertion>& assertions();
+// What assertion `name` checks ("" for an unknown name).
+std::string assertion_what(const std::string& name);
+
 // Waves of the design's own signals (Verilator tracing): needs a variant of
 // the configuration traced in the format (FST: every configuration of an
 // IMAP_RTL_FST_ALL build; VCD: IMAP_RTL_TRACE_CONFIGS).

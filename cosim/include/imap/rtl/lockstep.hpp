@@ -49,7 +49,11 @@ struct Divergence {
     std::string detail;             // free text (faults, ...)
     std::string reference = "TLM";  // the other side's name in the message
     std::string waves;              // waves file written, or why not
-    std::string message() const;    // one line naming all of the above
+    // an assertion of the design failed (docs/rtl.md, "Assertions"): its
+    // name; instruction / cycle / pc / pe are the RTL's at the failing edge
+    // and `what` says what the assertion checks
+    std::string assertion;
+    std::string message() const;  // one line naming all of the above
 };
 
 struct LockstepResult {

@@ -73,6 +73,10 @@ struct SuiteOptions {
     // auto_reg_every / auto_mem_every; a huge value: only what each
     // instruction names, and the final state).
     uint64_t full_compare_every = 0;
+    // false: the RTL alone, no reference and no trace port (the design's
+    // assertions are then the only check: docs/rtl.md, "Assertions"); a
+    // program that ends in a machine fault passes.
+    bool lockstep = true;
 };
 
 struct SuiteResult {
@@ -85,6 +89,7 @@ struct SuiteResult {
     int caught_program = -1;
     uint64_t caught_instruction = 0, instructions_to_catch = 0;
     std::string caught_message;
+    std::string caught_assertion;  // the first failure is this assertion of the design ("" other)
     Coverage coverage;
     double wall_s = 0;
 };

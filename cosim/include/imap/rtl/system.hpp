@@ -74,12 +74,34 @@ namespace detail {
 void claim_process(const char* who);
 }  // namespace detail
 
+// An assertion of the design failed (docs/rtl.md, "Assertions"): the run
+// stopped at that edge. An isa::Fault (PC, PE, cycle of the failing edge;
+// imapsim: "the modeled machine faulted", exit code 3) whose message is the
+// lockstep's report of it ("RTL assertion a_... failed at instruction N
+// (cycle C, pc P: ...) in PE p: what it checks").
+class AssertionFailure : public isa::Fault {
+  public:
+    AssertionFailure(const std::string& what, std::string assertion, uint64_t instruction,
+                     uint32_t pc, int64_t pe, uint64_t cycle)
+        : isa::Fault(what, pc, pe, kNone, cycle),
+          assertion_(std::move(assertion)),
+          instruction_(instruction) {}
+    const std::string& assertion() const { return assertion_; }
+    uint64_t instruction() const { return instruction_; }
+
+  private:
+    std::string assertion_;
+    uint64_t instruction_;
+};
+
 // Elaborates the testbench with the configuration of cfg (check_runnable:
 // isa::ConfigError naming what to build when it is not in this build), sets
 // the params and images (two output images of out_w x out_h), runs the
 // program to its halt and returns the result; `out` receives the output
 // images. A fault of the design comes out as an isa::Fault (PC, PE,
-// address, cycle, message). Once per process.
+// address, cycle, message), a failing assertion of the design as an
+// AssertionFailure (after the waves asked for, which end there, are
+// written). Once per process.
 RtlRunResult run_rtl(const isa::MachineConfig& cfg, const isa::Program& prog,
                      const std::vector<std::pair<int, uint32_t>>& params, const ImageInput& left,
                      const ImageInput& right, int out_w, int out_h, OutputImages* out,
