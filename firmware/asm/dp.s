@@ -3,11 +3,11 @@
 ; The host plans each parameter set (firmware/src/plan.cpp) and assembles a
 ; generated prelude (the constants and the PLAN_* macros: per-column passes
 ; of the forward pass, spills, reloads, backtrack columns, per-segment
-; re-layout) that includes this file, and writes the batch table into the
-; param block:
-;   param[0]          number of batches
-;   param[1 + 4b ..]  first ROI line, lines, first output line (batch-
-;                     relative), output lines of batch b
+; re-layout) that includes this file, and writes the number of batches
+; into param[0]. The batches follow from three constants (no table, so no
+; limit on their number): batch outputs ROI lines o .. o + BSTRIDE - 1
+; (o = 0, BSTRIDE, ...; the last one ends at HROI), and with BOVERLAP (the
+; vote across batches) it also holds the line above and below them.
 ; Input images arrive on video ports 0 (left) and 1 (right); the disparity
 ; map (ROI-sized) leaves on video output port 0.
 .include "dp_setup.inc"
@@ -17,7 +17,38 @@
 .include "relayout.inc"
 .include "census.inc"
 
-.equ BATCH_IDX 255                  ; param word holding the current batch
+.equ BATCH_IDX 255                  ; param word holding o, the batch's first output line
+
+; c8 = first ROI line of the batch at o, c9 = its lines (c0 = o; uses c1).
+.macro BATCH_LINES
+        cld     c0, [#BATCH_IDX]
+        caddi   c9, c0, #BSTRIDE
+        cli     c1, #HROI
+        blt     c9, c1, bla\@
+        cmov    c9, c1                      ; oe = min(HROI, o + BSTRIDE)
+bla\@:
+        cmov    c8, c0
+.if BOVERLAP
+        bge     c9, c1, blb\@
+        caddi   c9, c9, #1                  ; last = min(HROI, oe + 1)
+blb\@:
+        bz      c0, blc\@
+        csubi   c8, c0, #1                  ; first = max(0, o - 1)
+blc\@:
+.endif
+        csub    c9, c9, c8
+.endm
+
+; ... and c10 = first output line (batch-relative), c11 = output lines.
+.macro BATCH_OUT
+        BATCH_LINES
+        csub    c10, c0, c8
+        caddi   c11, c0, #BSTRIDE
+        blt     c11, c1, bod\@
+        cmov    c11, c1
+bod\@:
+        csub    c11, c11, c0
+.endm
 
         FWD_BODIES
         jmp     main
@@ -99,10 +130,7 @@ tnext:
         cli     c0, #0
         cst     c0, [#BATCH_IDX]
 batch:
-        cld     c0, [#BATCH_IDX]
-        cshli   c1, c0, #2
-        cld     c8, [c1 + 1]                ; first ROI line of the batch
-        cld     c9, [c1 + 2]                ; lines in the batch
+        BATCH_LINES
         DP_SETUP
         PLAN_IN
         DP_EXCHANGE
@@ -114,17 +142,12 @@ batch:
         DP_CLEARMAP
         DP_BACKTRACK
         DP_MERGE
-        cld     c0, [#BATCH_IDX]
-        cshli   c1, c0, #2
-        cld     c8, [c1 + 1]
-        cld     c9, [c1 + 2]
-        cld     c10, [c1 + 3]               ; first output line (batch-relative)
-        cld     c11, [c1 + 4]               ; output lines
+        BATCH_OUT
         PLAN_OUT
         cld     c0, [#BATCH_IDX]
-        caddi   c0, c0, #1
+        caddi   c0, c0, #BSTRIDE
         cst     c0, [#BATCH_IDX]
-        cld     c1, [#0]
+        cli     c1, #HROI
         blt     c0, c1, batch
         halt
 .endif

@@ -832,13 +832,6 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
             fp.batches.push_back({first, last - first, o - first, oe - o});
         }
     }
-    if (!tiny && static_cast<int>(fp.batches.size()) > kMaxBatches) {
-        std::ostringstream os;
-        os << "ROI of " << H << " lines needs " << fp.batches.size() << " batches on " << fp.P
-           << " PEs; the firmware's batch table holds " << kMaxBatches
-           << " (use more PEs or a shorter ROI)";
-        throw FirmwareError(os.str());
-    }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (roi.w + fp.P - 1) / fp.P;
     if (p.agg_ry > 0 && (tiny || fp.batches.size() > 1)) {
@@ -1049,15 +1042,6 @@ const std::vector<WaveGroup>& wave_groups() {
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
     std::vector<std::pair<int, uint32_t>> v;
     v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));
-    if (fp.f.tiny) return v;  // one line per batch: the CP counts lines
-    for (size_t b = 0; b < fp.batches.size(); ++b) {
-        const Batch& t = fp.batches[b];
-        const int base = 1 + 4 * static_cast<int>(b);
-        v.emplace_back(base + 0, uint32_t(t.first));
-        v.emplace_back(base + 1, uint32_t(t.lines));
-        v.emplace_back(base + 2, uint32_t(t.out_first));
-        v.emplace_back(base + 3, uint32_t(t.out_count));
-    }
     return v;
 }
 
@@ -1308,6 +1292,11 @@ std::string frame_source(const golden::Params& p, const FramePlan& fp) {
     equ(os, "Y0", fp.roi.y0);
     equ(os, "NSEG", fp.nseg);
     equ(os, "LPB", fp.lpb);
+    // The batches (dp.s BATCH_LINES / BATCH_OUT): every batch but the last
+    // outputs BSTRIDE lines; with BOVERLAP it also holds one line either side.
+    const bool multi = !fp.f.tiny && fp.batches.size() > 1;
+    equ(os, "BSTRIDE", multi ? fp.batches[0].out_count : fp.roi.h);
+    equ(os, "BOVERLAP", multi && fp.batches[1].out_first == 1 ? 1 : 0);
     equ(os, "HBMAX", fp.hbmax);
     equ(os, "INL", fp.inl);
     equ(os, "INR", fp.inr);

@@ -259,3 +259,28 @@ BOOST_AUTO_TEST_CASE(dp_phases_scale_with_the_work) {
     BOOST_TEST(within(per_slot, 0.10));
     BOOST_TEST(within(per_valid_matched, 0.10));
 }
+
+BOOST_AUTO_TEST_CASE(batches_have_no_limit) {
+    // The CP computes each batch's lines (dp.s BATCH_LINES): 128 lines on
+    // 8 PEs (bidir, the vote across batches) are 64 batches, bit-exact;
+    // longer ROIs and single mode as well.
+    struct C {
+        int W, H, D, P;
+        g::Mode mode;
+        bool vote;
+        size_t batches;
+    };
+    for (const C& c :
+         {C{32, 128, 8, 8, g::Mode::Bidir, true, 64}, C{24, 300, 8, 16, g::Mode::Bidir, false, 38},
+          C{24, 130, 8, 8, g::Mode::Single, true, 22}}) {
+        g::Params p;
+        p.D = c.D;
+        p.mode = c.mode;
+        p.vote = c.vote;
+        BOOST_TEST_CONTEXT("W=" << c.W << " H=" << c.H << " P=" << c.P << " mode "
+                                << g::to_string(c.mode) << " vote " << c.vote) {
+            const Measured m = run_case(p, c.W, c.H, c.P);
+            BOOST_TEST(m.plan.batches.size() == c.batches);
+        }
+    }
+}

@@ -79,7 +79,7 @@ std::string defines_text(const ModelRun& run, const std::string& source,
     t += ";     imapsim exec " + (emit_program.empty() ? std::string("FRAME.bin") : emit_program) +
          " --left LEFT --right RIGHT" + params + " --out-size " + std::to_string(run.plan.roi.w) +
          "x" + std::to_string(run.plan.roi.h) + machine + " --out-left MAP.png\n";
-    t += "; Param block (the batch table):" + params + "\n";
+    t += "; Param block (param[0]: the number of batches):" + params + "\n";
     t += fw::inline_firmware_includes(run.source);
     return t;
 }

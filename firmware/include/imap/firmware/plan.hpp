@@ -1,7 +1,7 @@
 // Host side of the DP firmware: the range checks that make the 16-bit
 // wrap-around costs exact, the per-column schedule of the forward pass, the
 // per-PE memory plan (pointer columns on chip, in the dead part of the line
-// buffers, or spilled to the external memory), the batch table, the
+// buffers, or spilled to the external memory), the batches, the
 // re-layout geometry and its lower bound, and the assembly of the firmware
 // with a generated prelude of constants and per-column macro calls
 // (docs/firmware.md).
@@ -203,7 +203,6 @@ struct FramePlan {
     int span() const { return f.bidir || spare ? 2 : 1; }
 };
 
-inline constexpr int kMaxBatches = 62;  // batch table in the param block
 
 // Where single mode's spilled pointer columns go (docs/firmware.md,
 // section 3): Cheaper picks the spare layout where it is feasible and its
