@@ -125,7 +125,40 @@ void read_bounds(const json& j, RunResult& r) {
     r.bound_cycles = j.value("bound_cycles", uint64_t{0});
 }
 
+// The energy of a report or a stored result (both write it as the object
+// "energy"; docs/energy.md).
+void read_energy(const json& j, RunResult& r) {
+    r.energy.reset();
+    if (!j.contains("energy") || !j["energy"].is_object()) return;
+    const json& e = j["energy"];
+    Energy x;
+    x.total_uj = e.at("total_uj").get<double>();
+    x.dynamic_uj = e.value("dynamic_uj", 0.0);
+    x.static_uj = e.value("static_uj", 0.0);
+    x.power_mw = e.value("power_mw", 0.0);
+    if (e.contains("by_class") && e["by_class"].is_object())
+        for (const auto& [k, v] : e["by_class"].items())
+            x.by_class.emplace_back(k, v.get<double>());
+    if (e.contains("events") && e["events"].is_object())
+        for (const auto& [k, v] : e["events"].items()) x.events.emplace_back(k, v.get<uint64_t>());
+    x.events_source = e.value("events_source", std::string());
+    r.energy = std::move(x);
+}
+
 }  // namespace
+
+json energy_json(const Energy& e) {
+    json by = json::object(), ev = json::object();
+    for (const auto& [k, v] : e.by_class) by[k] = v;
+    for (const auto& [k, v] : e.events) ev[k] = v;
+    return {{"total_uj", e.total_uj},
+            {"dynamic_uj", e.dynamic_uj},
+            {"static_uj", e.static_uj},
+            {"power_mw", e.power_mw},
+            {"by_class", by},
+            {"events", ev},
+            {"events_source", e.events_source}};
+}
 
 bool read_report(const json& rep, RunResult& r) {
     try {
@@ -148,6 +181,7 @@ bool read_report(const json& rep, RunResult& r) {
             r.phases.emplace_back(k, v.get<uint64_t>());
         r.pe_utilisation = rep.value("pe_utilisation", 0.0);
         read_bounds(rep, r);
+        read_energy(rep, r);
         r.area.reset();
         if (rep.contains("area") && rep["area"].is_object()) {
             Area a;
@@ -279,6 +313,7 @@ json to_json(const RunResult& r) {
             j["bounds"] = bd;
             j["bound_cycles"] = r.bound_cycles;
         }
+        if (r.energy) j["energy"] = energy_json(*r.energy);
     }
     j["wall_s"] = r.wall_s;
     if (!r.where.empty()) j["where"] = r.where;
@@ -315,6 +350,7 @@ RunResult result_from_json(const json& j) {
                           j["area"].at("memory_bits").get<uint64_t>()};
         r.pe_utilisation = j.value("pe_utilisation", 0.0);
         read_bounds(j, r);
+        read_energy(j, r);
     }
     r.wall_s = j.value("wall_s", 0.0);
     r.where = j.value("where", std::string());

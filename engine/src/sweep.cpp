@@ -54,7 +54,8 @@ const isa::ParamInfo* machine_param(const std::vector<isa::ParamInfo>& list, con
 
 ValueType machine_type(const isa::ParamInfo& pi) {
     if (pi.range.find('|') != std::string::npos) return ValueType::Text;
-    if (pi.name == "clock_mhz" || pi.range.find('.') != pi.range.rfind("..") ||
+    if (pi.name == "clock_mhz" || pi.group == "energy" ||
+        pi.range.find('.') != pi.range.rfind("..") ||
         pi.range.find("exclusive") != std::string::npos)
         return ValueType::Real;
     return ValueType::Int;
@@ -975,10 +976,9 @@ std::string to_csv(const Plan& p, const Result& r) {
     std::ostringstream o;
     std::vector<std::string> head;
     for (const Axis& a : p.swept) head.push_back(a.name);
-    for (const char* c :
-         {"cycles", "modeled_ms", "fps", "status", "message", "bit_exact", "wall_s",
-          "local_bytes_per_pe", "ext_bytes_per_pe", "dominant_phase", "dominant_share",
-          "area_cells", "area_memory_bits"})
+    for (const char* c : {"cycles", "modeled_ms", "fps", "status", "message", "bit_exact", "wall_s",
+                          "local_bytes_per_pe", "ext_bytes_per_pe", "dominant_phase",
+                          "dominant_share", "area_cells", "area_memory_bits"})
         head.push_back(c);
     for (const std::string& ph : r.phase_names) head.push_back("phase_" + ph);
     head.push_back("bound_cycles");
@@ -992,6 +992,10 @@ std::string to_csv(const Plan& p, const Result& r) {
                 break;
             }
     for (const std::string& ph : bounded) head.push_back("bound_" + ph);
+    // Energy of the frame and average power over its modeled time
+    // (docs/energy.md), after every other column so that their positions stay.
+    head.push_back("energy_uj");
+    head.push_back("power_mw");
     auto emit = [&](const std::vector<std::string>& cells) {
         for (size_t i = 0; i < cells.size(); ++i) o << (i ? "," : "") << csv_field(cells[i]);
         o << "\n";
@@ -1022,6 +1026,9 @@ std::string to_csv(const Plan& p, const Result& r) {
             const uint64_t b = ran ? row.run->bound_of(ph) : 0;
             c.push_back(b > 0 ? std::to_string(b) : "");
         }
+        const bool en = ran && row.run->energy.has_value();
+        c.push_back(en ? fmt("%.6f", row.run->energy->total_uj) : "");
+        c.push_back(en ? fmt("%.6f", row.run->energy->power_mw) : "");
         emit(c);
     }
     if (r.interrupted) {
@@ -1099,6 +1106,7 @@ json to_json(const Plan& p, const Result& r) {
                 o["bound_cycles"] = rr.bound_cycles;
                 o["efficiency"] = rr.efficiency();
             }
+            if (rr.energy) o["energy"] = energy_json(*rr.energy);
         }
         if (row.run && row.run->wall_s > 0) o["wall_s"] = row.run->wall_s;
         if (row.local_bytes >= 0) o["local_bytes_per_pe"] = row.local_bytes;

@@ -150,6 +150,7 @@ void MachineConfig::validate() const {
     if (watchdog_cycles < 1 || watchdog_cycles > (1ull << 62))
         bad("watchdog_cycles", std::to_string(watchdog_cycles), "1..4611686018427387904");
     costs.validate();
+    energy.validate();
 }
 
 std::vector<ParamInfo> MachineConfig::list() const {
@@ -170,6 +171,7 @@ std::vector<ParamInfo> MachineConfig::list() const {
     add(kMachineFields[7], indirect ? "on" : "off");
     add(kMachineFields[8], std::to_string(watchdog_cycles));
     for (ParamInfo& p : costs.list()) out.push_back(std::move(p));
+    for (ParamInfo& p : energy.list()) out.push_back(std::move(p));
     return out;
 }
 
@@ -208,6 +210,14 @@ void MachineConfig::set(std::string_view name, std::string_view value) {
         if (v.empty() || errno != 0 || *end != '\0' || !(d > 0.0) || d > 100000.0)
             bad(name, "'" + v + "'", "a number > 0 and <= 100000");
         clock_mhz = d;
+    } else if (EnergyTable::has(name)) {
+        errno = 0;
+        char* end = nullptr;
+        const double d = std::strtod(v.c_str(), &end);
+        if (v.empty() || errno != 0 || end == v.c_str() || *end != '\0' || !std::isfinite(d))
+            throw ConfigError("invalid value '" + v + "' for " + std::string(name) +
+                              ": expected a number");
+        energy.set(name, d);
     } else {
         bool is_cost = false;
         for (const CostTable::Field& f : CostTable::fields()) is_cost |= name == f.name;
@@ -215,7 +225,9 @@ void MachineConfig::set(std::string_view name, std::string_view value) {
             std::string names;
             for (const MachineField& f : kMachineFields) names += std::string(f.name) + ", ";
             for (const CostTable::Field& f : CostTable::fields())
-                names += std::string(f.name) + (&f == &CostTable::fields().back() ? "" : ", ");
+                names += std::string(f.name) + ", ";
+            for (const EnergyTable::Field& f : EnergyTable::fields())
+                names += std::string(f.name) + (&f == &EnergyTable::fields().back() ? "" : ", ");
             throw ConfigError("unknown machine parameter '" + std::string(name) +
                               "' (known: " + names + ")");
         }

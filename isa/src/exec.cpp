@@ -434,6 +434,7 @@ struct Exec {
         m.extra_ =
             m.cfg_.costs.xfer_cycles(static_cast<uint64_t>(len), static_cast<uint64_t>(m.active_)) -
             m.cfg_.costs.xfer_setup;
+        m.ext_bytes_ += static_cast<uint64_t>(len) * static_cast<uint64_t>(m.active_);
     }
 
     // rxl: rd(p) = ra(p - k); rxr: rd(p) = ra(p + k) (indices mod P). Every

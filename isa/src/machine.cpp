@@ -430,6 +430,7 @@ void Machine::load(const Program& prog) {
     code_ = std::move(code);
     runs_ = std::move(runs);
     exec_diff_.assign(code_.size() + 1, 0);
+    lane_diff_.assign(code_.size() + 1, 0);
     bind_handlers();
     reset();
 }
@@ -463,8 +464,9 @@ void Machine::reset() {
     phase_ = 0;
     phase_cycles_.assign(prog_.phases.size(), 0);
     std::fill(exec_diff_.begin(), exec_diff_.end(), 0);
+    std::fill(lane_diff_.begin(), lane_diff_.end(), 0);
     class_extra_.fill(0);
-    instructions_ = pe_cycles_ = active_lane_cycles_ = 0;
+    instructions_ = pe_cycles_ = active_lane_cycles_ = ext_bytes_ = 0;
 }
 
 void Machine::recount_active() {
@@ -495,14 +497,20 @@ const Stats& Machine::stats() const {
     s.instructions = instructions_;
     s.pe_cycles = pe_cycles_;
     s.active_lane_cycles = active_lane_cycles_;
+    s.ext_bytes = ext_bytes_;
     int64_t n = 0;
+    uint64_t lanes = 0;
     for (size_t pc = 0; pc < code_.size(); ++pc) {
         n += exec_diff_[pc];
+        lanes += lane_diff_[pc];
         if (n == 0) continue;
         const Decoded& d = code_[pc];
         const uint64_t k = static_cast<uint64_t>(n);
         s.op_counts[d.op] += k;
+        s.op_lanes[d.op] += lanes;
         s.class_cycles[d.cls] += k * d.cost;
+        if (d.cls == static_cast<uint8_t>(CostClass::Ring))
+            s.ring_hops += k * static_cast<uint64_t>(d.imm);
     }
     for (size_t c = 0; c < class_extra_.size(); ++c) s.class_cycles[c] += class_extra_[c];
     stats_ = s;
@@ -518,6 +526,7 @@ inline void Machine::exec_one() {
     next_pc_ = pc + 1;
     extra_ = 0;
     const uint64_t before = cycles_;
+    const int active_before = active_;
     d.fn[full_](*this, d);
     const uint64_t c = d.cost + extra_;
     cycles_ += c;
@@ -525,6 +534,8 @@ inline void Machine::exec_one() {
     class_extra_[d.cls] += extra_;
     ++exec_diff_[pc];
     --exec_diff_[pc + 1];
+    lane_diff_[pc] += static_cast<uint64_t>(active_before);
+    lane_diff_[pc + 1] -= static_cast<uint64_t>(active_before);
     ++instructions_;
     if (d.flags & kFlagPeWork) {
         pe_cycles_ += c;
@@ -574,6 +585,8 @@ void Machine::exec_run(uint32_t start, uint64_t limit) {
     phase_cycles_[phase] += cycles_ - start_cycles;
     ++exec_diff_[start];
     --exec_diff_[r.end + 1];
+    lane_diff_[start] += active;
+    lane_diff_[r.end + 1] -= active;
     instructions_ += r.len;
     pe_cycles_ += r.pe_cycles;
     active_lane_cycles_ += r.pe_cycles * active;
@@ -588,6 +601,8 @@ void Machine::book_partial_run(uint32_t start, uint32_t stop, uint64_t start_cyc
     if (stop == start) return;
     ++exec_diff_[start];
     --exec_diff_[stop];
+    lane_diff_[start] += active;
+    lane_diff_[stop] -= active;
     instructions_ += stop - start;
     // suffix sums of the same run: start .. end minus stop .. end
     const uint64_t pe = runs_[start].pe_cycles - runs_[stop].pe_cycles;

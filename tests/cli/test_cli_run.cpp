@@ -3,13 +3,16 @@
 // machine-flag errors.
 #define BOOST_TEST_MODULE cli_run
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "cli_test_util.hpp"
+#include "imap/isa/energy.hpp"
 
 namespace fs = std::filesystem;
 
@@ -133,6 +136,9 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
         {"--set ring_hop=0", "ring_hop"},
         {"--set nosuch=3", "nosuch"},
         {"--set indirect=off", "indirect"},
+        {"--set e_alu_pj=-1", "invalid value -1 for e_alu_pj: allowed 0..1e+06 pJ"},
+        {"--set energy_scale=0", "energy_scale: allowed 0.001..10000"},
+        {"--set s_pe_leak_uw=abc", "invalid value 'abc' for s_pe_leak_uw: expected a number"},
         {"--model nosuch", "--model"},
     };
     for (const auto& [flags, needle] : cases) {
@@ -143,6 +149,86 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
             BOOST_TEST(!fs::exists(out));
         }
     }
+    fs::remove_all(d);
+}
+
+// Issue 29 item 2: every energy parameter is range-checked on the command
+// line (exit 2 naming the range, before any simulation), from the table's
+// own list of fields.
+BOOST_AUTO_TEST_CASE(every_energy_parameter_range_checked_on_the_command_line) {
+    const fs::path d = tmpdir();
+    const std::string out = (d / "never.png").string();
+    for (const imap::isa::EnergyTable::Field& f : imap::isa::EnergyTable::fields()) {
+        std::ostringstream lo, hi, bad;
+        lo << f.min;
+        hi << f.max;
+        bad << f.max * 10;
+        const Result r = run("run --out " + out + " --set " + f.name + "=" + bad.str());
+        BOOST_TEST_CONTEXT(f.name << "\n" << r.out) {
+            BOOST_TEST(r.code == 2);
+            BOOST_TEST(r.out.find(std::string("for ") + f.name + ": allowed " + lo.str() + ".." +
+                                  hi.str()) != std::string::npos);
+            BOOST_TEST(!fs::exists(out));
+        }
+    }
+    fs::remove_all(d);
+}
+
+// Issue 29 item 3: the report's energy is the events times the energies of
+// the report's own parameters (recomputed here from the JSON, not by the
+// model's function), its parts add up, and power = energy / modeled time.
+BOOST_AUTO_TEST_CASE(report_energy_is_events_times_energies) {
+    const fs::path d = tmpdir();
+    const std::string rep = (d / "e.json").string();
+    const Result r =
+        run("run --model core --pes 16 --size 48x16 --D 8 --set e_alu_pj=0.5 "
+            "--set e_load_pj=2 --set mem_bytes=4096 --report " +
+            rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("energy: ") != std::string::npos);
+    BOOST_TEST(r.out.find("energy by class: ") != std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(rep));
+    const nlohmann::json& e = j.at("energy");
+    const nlohmann::json& v = e.at("events");
+    const nlohmann::json& m = j.at("params").at("machine");
+    auto n = [&](const char* k) { return v.at(k).get<double>(); };
+    auto p = [&](const char* k) { return m.at(k).get<double>(); };
+    BOOST_TEST(p("e_alu_pj") == 0.5);
+    const double k = p("energy_scale");
+    const double mem = std::pow(p("mem_bytes") / 1024.0, p("mem_size_exp"));  // 2
+    const double dyn =
+        k * (n("alu_lanes") * p("e_alu_pj") + n("minmax_lanes") * p("e_minmax_pj") +
+             n("shift_lanes") * p("e_shift_pj") +
+             (n("alu_lanes") + n("minmax_lanes") + n("shift_lanes")) * p("e_rf_pj") +
+             n("masked_lanes") * p("e_masked_pj") +
+             (n("load_lanes") * p("e_load_pj") + n("store_lanes") * p("e_store_pj")) * mem +
+             n("ring_pe_hops") * p("e_ring_hop_pj") + n("mask_pe_ops") * p("e_mask_pj") +
+             n("cp_instructions") * p("e_cp_pj") + n("instructions") * p("e_issue_pj") +
+             n("video_bytes") * p("e_video_byte_pj")) +
+        n("ext_bytes") * p("e_ext_byte_pj") + n("ext_transfers") * p("e_ext_xfer_pj");
+    const double cyc = j.at("cycles").get<double>();
+    const double sec = cyc / (p("clock_mhz") * 1e6);
+    const double stat = n("pes") * (cyc * p("s_pe_clock_pj") * k + sec * p("s_pe_leak_uw") * 1e6) +
+                        cyc * p("s_cp_clock_pj") * k + sec * p("s_cp_leak_uw") * 1e6;
+    const auto tol = boost::test_tools::tolerance(1e-9);
+    BOOST_TEST(n("pes") == 16.0);
+    BOOST_TEST(n("cycles") == cyc);
+    BOOST_TEST(n("alu_lanes") > 0.0);
+    BOOST_TEST(n("load_lanes") > 0.0);
+    BOOST_TEST(n("video_bytes") > 0.0);
+    BOOST_TEST(e.at("dynamic_uj").get<double>() == dyn * 1e-6, tol);
+    BOOST_TEST(e.at("static_uj").get<double>() == stat * 1e-6, tol);
+    BOOST_TEST(e.at("total_uj").get<double>() == (dyn + stat) * 1e-6, tol);
+    BOOST_TEST(e.at("by_class").at("alu").get<double>() == n("alu_lanes") * 0.5 * k * 1e-6, tol);
+    double sum = 0;
+    for (const auto& [c, x] : e.at("by_class").items()) sum += x.get<double>();
+    BOOST_TEST(sum == e.at("total_uj").get<double>(), tol);
+    // uJ / ms = mW
+    BOOST_TEST(e.at("power_mw").get<double>() ==
+                   e.at("total_uj").get<double>() / j.at("modeled_ms").get<double>(),
+               tol);
+    BOOST_TEST(e.at("events_source") == "isa");
     fs::remove_all(d);
 }
 
@@ -172,6 +258,7 @@ BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
             BOOST_TEST(rep[1].at("bit_exact").get<bool>());
             BOOST_TEST(rep[0].at("cycles") == rep[1].at("cycles"));
             BOOST_TEST(rep[0].at("phases") == rep[1].at("phases"));
+            BOOST_TEST(rep[0].at("energy").at("events") == rep[1].at("energy").at("events"));
         }
     }
     fs::remove_all(d);
@@ -378,5 +465,15 @@ BOOST_AUTO_TEST_CASE(lockstep_and_rtl_reports_have_their_fields) {
     const nlohmann::json rj = nlohmann::json::parse(std::ifstream(rtl));
     BOOST_TEST(rj.at("rtl").at("clocks").get<uint64_t>() >= rj.at("cycles").get<uint64_t>());
     BOOST_TEST(rj.at("rtl").at("configuration").get<std::string>().find("p8_") == 0u);
+    // Energy of rtl / lockstep runs: the instruction-set model's counts of
+    // the same program (docs/energy.md 5), so the core run's figures.
+    const std::string core = (d / "core.json").string();
+    BOOST_REQUIRE(run(base + "--model core --report " + core).code == 0);
+    const nlohmann::json cj = nlohmann::json::parse(std::ifstream(core));
+    BOOST_TEST(rj.at("energy").at("events") == cj.at("energy").at("events"));
+    BOOST_TEST(j.at("energy").at("events") == cj.at("energy").at("events"));
+    BOOST_TEST(rj.at("energy").at("events_source").get<std::string>().find("instruction-set") ==
+               0u);
+    BOOST_TEST(j.at("energy").at("events_source") == "lockstep's TLM side");
     fs::remove_all(d);
 }

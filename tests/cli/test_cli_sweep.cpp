@@ -148,6 +148,10 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
         BOOST_TEST((std::find(head.begin(), head.end(), c) != head.end()));
     }
     BOOST_TEST((std::find(head.begin(), head.end(), "phase_forward") != head.end()));
+    // Energy (docs/energy.md): the last two columns, after every older one.
+    BOOST_REQUIRE(head.size() >= 2u);
+    BOOST_TEST(head[head.size() - 2] == "energy_uj");
+    BOOST_TEST(head[head.size() - 1] == "power_mw");
 
     // A direct run with 60 bytes of local memory is refused by the planner:
     // the sweep reports that point as a row with the same message.
@@ -191,6 +195,11 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
             BOOST_TEST(bsum == std::stoull(row.at("bound_cycles")));
             BOOST_TEST(std::stod(row.at("efficiency")) == double(bsum) / cyc,
                        boost::test_tools::tolerance(1e-3));
+            // average power = energy / modeled time (uJ / ms = mW)
+            BOOST_TEST(std::stod(row.at("energy_uj")) > 0.0);
+            BOOST_TEST(std::stod(row.at("power_mw")) ==
+                           std::stod(row.at("energy_uj")) / std::stod(row.at("modeled_ms")),
+                       boost::test_tools::tolerance(1e-4));
         }
     }
     BOOST_TEST((seen == std::set<std::string>{"8/1024", "8/60", "16/1024", "16/60"}));
@@ -210,6 +219,11 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
     BOOST_TEST(j.at("fixed").at("algorithm").at("D") == 8);
     BOOST_TEST(j.at("fixed").at("roi_size") == "32x16");
     BOOST_TEST(j.at("swept").size() == 2u);
+    for (const json& row : j.at("rows"))
+        if (row.at("status") == "ok") {
+            BOOST_TEST(row.at("energy").at("total_uj").get<double>() > 0.0);
+            BOOST_TEST(row.at("energy").at("events").at("alu_lanes").get<uint64_t>() > 0u);
+        }
 
     // Plot (gnuplot): a readable image of the requested size, not blank; its
     // script and data beside it, the data holding the two points that ran.

@@ -106,6 +106,15 @@ BOOST_AUTO_TEST_CASE(results_survive_json) {
     r.modeled_ms = 0.5;
     r.phases = {{"video_in", 5}, {"forward", 90}, {"backtrack", 4}};
     r.area = eng::Area{1234, 8192};
+    eng::Energy e;
+    e.total_uj = 3.5;
+    e.dynamic_uj = 3;
+    e.static_uj = 0.5;
+    e.power_mw = 7;
+    e.by_class = {{"alu", 1.25}, {"load", 1.75}, {"static_pe", 0.5}};
+    e.events = {{"alu_lanes", 41}, {"load_lanes", 4}};
+    e.events_source = "isa";
+    r.energy = e;
     r.wall_s = 1.5;
     r.where = "slurm job 3_1 on node";
     r.command = "imapsim run";
@@ -113,6 +122,11 @@ BOOST_AUTO_TEST_CASE(results_survive_json) {
     BOOST_TEST(eng::to_json(b) == eng::to_json(r));
     BOOST_TEST((b.phases == r.phases));  // order kept
     BOOST_TEST(b.area->memory_bits == 8192u);
+    BOOST_REQUIRE(b.energy.has_value());
+    BOOST_TEST(b.energy->total_uj == 3.5);
+    BOOST_TEST(b.energy->power_mw == 7.0);
+    BOOST_TEST(b.energy->events.size() == 2u);
+    BOOST_TEST(b.energy->events_source == "isa");
     BOOST_CHECK_THROW(eng::result_from_json({{"model", "x"}, {"outcome", "nonsense"}}),
                       std::exception);
 }

@@ -226,6 +226,15 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     r.rows[1].run->area = eng::Area{4096, 262144};
     r.rows[0].run->bounds = {{"forward", 30000}, {"relayout_in", 10000}};
     r.rows[0].run->bound_cycles = 40000;
+    eng::Energy en;
+    en.total_uj = 12.5;
+    en.dynamic_uj = 10;
+    en.static_uj = 2.5;
+    en.power_mw = 6.25;
+    en.by_class = {{"alu", 10}, {"static_pe", 2.5}};
+    en.events = {{"alu_lanes", 7}};
+    en.events_source = "isa";
+    r.rows[0].run->energy = en;
     r.phase_names = {"relayout_in", "forward"};
     const std::string csv = sw::to_csv(p, r);
     const std::string head = csv.substr(0, csv.find('\n'));
@@ -237,8 +246,12 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     // the bounded phases in the phases' order; empty where a row has none.
     BOOST_TEST(head.find("phase_forward,bound_cycles,efficiency,bound_relayout_in,bound_forward") !=
                std::string::npos);
-    BOOST_TEST(csv.find(",20000,60000,40000,0.5000,10000,30000\n") != std::string::npos, csv);
-    BOOST_TEST(csv.find(",20000,20000,,,,\n") != std::string::npos, csv);
+    // ... and the energy at the very end (docs/energy.md), empty without one.
+    BOOST_TEST(head.find("bound_forward,energy_uj,power_mw") != std::string::npos, head);
+    BOOST_TEST(
+        csv.find(",20000,60000,40000,0.5000,10000,30000,12.500000,6.250000\n") != std::string::npos,
+        csv);
+    BOOST_TEST(csv.find(",20000,20000,,,,,,\n") != std::string::npos, csv);
     const auto j = sw::to_json(p, r);
     BOOST_TEST(j["rows"][0]["dominant_phase"] == "forward");
     BOOST_TEST(j["rows"][1]["area"]["cells"] == 4096);
@@ -246,6 +259,9 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     BOOST_TEST(j["rows"][0]["bounds"]["forward"] == 30000);
     BOOST_TEST(j["rows"][0]["efficiency"] == 0.5);
     BOOST_TEST(!j["rows"][1].contains("bounds"));
+    BOOST_TEST(j["rows"][0]["energy"]["total_uj"] == 12.5);
+    BOOST_TEST(j["rows"][0]["energy"]["by_class"]["static_pe"] == 2.5);
+    BOOST_TEST(!j["rows"][1].contains("energy"));
     BOOST_TEST(r.exit_code(false) == 0);
     // The exit code: nothing ran is 5, a failed row is 5, interrupted 130.
     sw::Result none;

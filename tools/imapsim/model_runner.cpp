@@ -1,7 +1,9 @@
 #include "model_runner.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
+#include "imap/isa/energy.hpp"
 #include "imap/isa/machine.hpp"
 #ifdef IMAPSIM_HAVE_TLM
 #include "imap/tlm/system.hpp"
@@ -317,6 +319,29 @@ isa::Observer* WaveSession::observer() {
 void WaveSession::finish(uint64_t) {}
 #endif
 
+#ifdef IMAPSIM_HAVE_RTL
+namespace {
+// The RTL design counts executions per opcode and active PE-cycles, not the
+// energy model's events (active PEs per opcode, ring hops, external bytes):
+// an rtl or lockstep run takes them from the instruction-set model of the
+// same program (`ref`: the lockstep's TLM side, or a core run), after
+// checking that its executions per opcode and its cycles are the RTL's.
+std::string adopt_isa_events(isa::Stats& rtl, uint64_t rtl_cycles, const isa::Stats& ref,
+                             uint64_t ref_cycles, const std::string& who) {
+    rtl.op_lanes = ref.op_lanes;
+    rtl.ring_hops = ref.ring_hops;
+    rtl.ext_bytes = ref.ext_bytes;
+    if (rtl.op_counts == ref.op_counts && rtl_cycles == ref_cycles) return who;
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "warning: energy: the RTL's executions per opcode or cycles differ from the "
+                 "%s's; the energy uses the %s's event counts\n",
+                 who.c_str(), who.c_str());
+    return who + " (differs from the RTL's counts)";
+}
+}  // namespace
+#endif
+
 ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& roi,
                    const g::ImageView& left, const g::ImageView& right,
                    const isa::MachineConfig& cfg, const WaveFlags* waves) {
@@ -398,6 +423,13 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                                 rtl_sel.limit_name);
 #endif
                 r = fw::frame_result(run.plan, prog, rr, std::move(out.image[0].pixels));
+                {
+                    const fw::FrameResult ref =
+                        fw::run_frame_core(run.plan, prog, left, right, cfg);
+                    run.energy_source =
+                        adopt_isa_events(r.stats, r.cycles, ref.stats, ref.cycles,
+                                         "instruction-set model (core run of the same program)");
+                }
                 run.model_info["rtl"] = {{"configuration", rr.configuration},
                                          {"clocks", rr.clocks},
                                          {"cycles", rr.cycles},
@@ -447,6 +479,8 @@ ModelRun run_model(const std::string& model, const g::Params& p, const g::Roi& r
                     static_cast<unsigned long long>(lr.rtl.cycles));
                 r = fw::frame_result(run.plan, prog, lr.rtl, std::move(out.image[0].pixels));
                 r.wall_s = lr.wall_s;
+                run.energy_source = adopt_isa_events(r.stats, r.cycles, lr.tlm.stats, lr.tlm.cycles,
+                                                     "lockstep's TLM side");
             }
             finish_waves(r.cycles);
             return run;
@@ -493,6 +527,60 @@ Comparison compare_maps(const g::DisparityMap& got, const g::DisparityMap& want)
             }
     c.equal = c.differing == 0;
     return c;
+}
+
+nlohmann::json energy_json(const isa::EnergyReport& e, const std::string& source) {
+    nlohmann::json by = nlohmann::json::object();
+    for (int i = 0; i < isa::kEnergyClassCount; ++i)
+        by[isa::to_string(static_cast<isa::EnergyClass>(i))] = e.by_class_pj[size_t(i)] * 1e-6;
+    const isa::EnergyEvents& v = e.events;
+    const nlohmann::json ev = {{"alu_lanes", v.alu_lanes},
+                               {"minmax_lanes", v.minmax_lanes},
+                               {"shift_lanes", v.shift_lanes},
+                               {"load_lanes", v.load_lanes},
+                               {"store_lanes", v.store_lanes},
+                               {"masked_lanes", v.masked_lanes},
+                               {"ring_pe_hops", v.ring_pe_hops},
+                               {"mask_pe_ops", v.mask_pe_ops},
+                               {"cp_instructions", v.cp_instructions},
+                               {"instructions", v.instructions},
+                               {"ext_bytes", v.ext_bytes},
+                               {"ext_transfers", v.ext_transfers},
+                               {"video_bytes", v.video_bytes},
+                               {"cycles", v.cycles},
+                               {"pes", v.pes}};
+    return {{"total_uj", e.total_pj * 1e-6},
+            {"dynamic_uj", e.dynamic_pj * 1e-6},
+            {"static_uj", e.static_pj * 1e-6},
+            {"power_mw", e.power_mw},
+            {"by_class", by},
+            {"events", ev},
+            {"events_source", source}};
+}
+
+void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
+                  const std::string& source) {
+    std::printf(
+        "  energy: %.3f uJ per frame (dynamic %.3f, static %.3f), %.3f mW average over the "
+        "frame's %.3f ms; [A] 45 nm table x energy_scale %g (docs/energy.md)%s%s\n",
+        e.total_pj * 1e-6, e.dynamic_pj * 1e-6, e.static_pj * 1e-6, e.power_mw, e.seconds * 1e3,
+        cfg.energy.energy_scale,
+        source == "isa" ? "" : "; events: ", source == "isa" ? "" : source.c_str());
+    std::vector<std::pair<double, int>> order;
+    for (int i = 0; i < isa::kEnergyClassCount; ++i)
+        if (e.by_class_pj[size_t(i)] > 0) order.emplace_back(e.by_class_pj[size_t(i)], i);
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    std::string line;
+    for (const auto& [pj, i] : order) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%s %.1f%%", line.empty() ? "" : ", ",
+                      isa::to_string(static_cast<isa::EnergyClass>(i)),
+                      e.total_pj > 0 ? 100.0 * pj / e.total_pj : 0.0);
+        line += buf;
+    }
+    std::printf("  energy by class: %s\n", line.empty() ? "-" : line.c_str());
 }
 
 void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::MachineConfig& cfg,
@@ -544,6 +632,7 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
                 static_cast<unsigned long long>(r.relayout_out),
                 static_cast<long long>(r.relayout_bound_out));
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
+    print_energy(isa::energy_of(r.stats, r.cycles, cfg), cfg, run.energy_source);
     const std::string faster = faster_assumptions_text(cfg);
     if (!faster.empty())
         std::printf("  [A+] assumed, faster than the published facts (docs/isa.md 2.2): %s\n",
@@ -627,6 +716,7 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
+    j["energy"] = energy_json(isa::energy_of(r.stats, r.cycles, cfg), run.energy_source);
 #ifdef IMAPSIM_HAVE_RTL
     // Silicon of this machine configuration: the design's PE and CP as
     // synthesized by yosys, scaled to cfg (docs/rtl.md, "Synthesis"); a

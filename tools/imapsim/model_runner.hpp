@@ -60,6 +60,10 @@ struct ModelRun {
     // (configuration, clocks), "lockstep" (instructions retired and
     // compared, both models' cycles, the first divergence).
     nlohmann::json model_info = nlohmann::json::object();
+    // Where the energy model's event counts come from: "isa" (the
+    // instruction-set executor that ran: core, tlm), or for rtl / lockstep
+    // the instruction-set model's counts of the same program (docs/energy.md 5).
+    std::string energy_source = "isa";
     // A lockstep divergence: its one-line message (empty when none). The
     // run stopped there, so `result` holds no map.
     std::string divergence;

@@ -48,6 +48,17 @@ struct Area {
     uint64_t memory_bits = 0;
 };
 
+// Energy of the frame, when the report has it (report key "energy",
+// docs/energy.md): totals, the share of each event class (uJ) and the event
+// counts behind them.
+struct Energy {
+    double total_uj = 0, dynamic_uj = 0, static_uj = 0;
+    double power_mw = 0;                                   // average over the frame's modeled time
+    std::vector<std::pair<std::string, double>> by_class;  // uJ per event class
+    std::vector<std::pair<std::string, uint64_t>> events;  // event counts
+    std::string events_source;                             // "isa", or where an RTL run's came from
+};
+
 struct RunResult {
     std::string model;
     Outcome outcome = Outcome::Failed;
@@ -69,6 +80,8 @@ struct RunResult {
     // (report keys "bounds", "bound_cycles"; docs/firmware.md section 11).
     std::vector<std::pair<std::string, uint64_t>> bounds;
     uint64_t bound_cycles = 0;
+    // The energy of the frame (report key "energy").
+    std::optional<Energy> energy;
 
     double wall_s = 0;    // wall time of the child process
     std::string where;    // "local" or "slurm job 123_4 on node1"
@@ -105,6 +118,8 @@ RunResult read_child(const std::string& model, bool started, int wait_status,
 bool read_report(const nlohmann::json& rep, RunResult& r);
 
 nlohmann::json to_json(const RunResult& r);
+// The "energy" object of a report / stored result.
+nlohmann::json energy_json(const Energy& e);
 RunResult result_from_json(const nlohmann::json& j);  // throws std::exception on bad input
 
 }  // namespace imap::engine

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "imap/isa/energy.hpp"
+
 namespace imap::isa {
 
 // Invalid parameter: the message names the parameter, the value and the range.
@@ -23,7 +25,7 @@ struct ParamInfo {
     std::string value;
     std::string range;  // allowed values, e.g. "2..65536"
     std::string unit;   // "cycles", "bytes", ...
-    std::string group;  // "machine" or "cost"
+    std::string group;  // "machine", "cost" or "energy"
     std::string doc;
     bool assumption = false;  // not published for the real board: a modelling choice
     bool faster = false;      // ... and one that makes the machine faster than the published facts
@@ -86,13 +88,15 @@ struct MachineConfig {
     bool indirect = true;                      // per-PE addressing (ldx / stx) present
     uint64_t watchdog_cycles = 2000000000ull;  // runaway-program limit
     CostTable costs;
+    EnergyTable energy;  // energies per event (docs/energy.md); no effect on the run
 
     // Throws ConfigError naming the first invalid parameter and its range.
     void validate() const;
-    // Every parameter (machine and cost), for reports.
+    // Every parameter (machine, cost and energy), for reports.
     std::vector<ParamInfo> list() const;
-    // Set any parameter (machine or cost) from text, as on a command line:
-    // set("pes", "128"), set("ring_hop", "2"), set("indirect", "off").
+    // Set any parameter (machine, cost or energy) from text, as on a command
+    // line: set("pes", "128"), set("ring_hop", "2"), set("indirect", "off"),
+    // set("e_alu_pj", "0.5").
     void set(std::string_view name, std::string_view value);
     // Modeled time of `cycles` at clock_mhz.
     double seconds(uint64_t cycles) const {

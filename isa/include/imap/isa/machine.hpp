@@ -164,6 +164,13 @@ struct Stats {
     std::array<uint64_t, 256> op_counts{};                 // executions by opcode
     uint64_t pe_cycles = 0;           // cycles of ALU / memory / ring instructions
     uint64_t active_lane_cycles = 0;  // sum over them of cycles x active PEs
+    // Events for the energy model (energy.hpp), counted as cheaply as the
+    // executions: per opcode, the sum over its executions of the active PEs
+    // (M = 1) when it started; the hops of rxl / rxr (sum of k); the bytes
+    // xld / xst moved over the external path (len x active PEs).
+    std::array<uint64_t, 256> op_lanes{};
+    uint64_t ring_hops = 0;
+    uint64_t ext_bytes = 0;
 };
 
 class Machine {
@@ -332,9 +339,12 @@ class Machine {
     std::vector<uint64_t> phase_cycles_;
 
     // Statistics as the run loop keeps them: executions by PC as a
-    // difference array (a run from s to e adds 1 at s, -1 at e + 1), the
+    // difference array (a run from s to e adds 1 at s, -1 at e + 1; the
+    // active PE count likewise in lane_diff_), the
     // variable cycles by cost class, and the running totals.
     std::vector<int64_t> exec_diff_;
+    std::vector<uint64_t> lane_diff_;  // active PEs by PC, as a difference array (mod 2^64)
+    uint64_t ext_bytes_ = 0;
     std::array<uint64_t, kCostClassCount> class_extra_{};
     uint64_t instructions_ = 0, pe_cycles_ = 0, active_lane_cycles_ = 0;
     mutable Stats stats_;

@@ -1,0 +1,212 @@
+// The energy model: the table's fields, the events of a run, their energy
+// (docs/energy.md).
+#include "imap/isa/energy.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "imap/isa/config.hpp"
+#include "imap/isa/machine.hpp"
+#include "imap/isa/opcodes.hpp"
+
+namespace imap::isa {
+
+namespace {
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string range_of(const EnergyTable::Field& f) {
+    return num(f.min) + ".." + num(f.max);
+}
+
+}  // namespace
+
+const std::vector<EnergyTable::Field>& EnergyTable::fields() {
+    using T = EnergyTable;
+    static const std::vector<Field> f = {
+        {"e_alu_pj", &T::e_alu_pj, 0, 1e6, "pJ",
+         "ALU-class PE instruction (add, logic, compare, move, select) per active PE"},
+        {"e_minmax_pj", &T::e_minmax_pj, 0, 1e6, "pJ",
+         "min / max (compare and select) per active PE"},
+        {"e_shift_pj", &T::e_shift_pj, 0, 1e6, "pJ", "shifter instruction per active PE"},
+        {"e_rf_pj", &T::e_rf_pj, 0, 1e6, "pJ",
+         "register-file reads and write of an ALU / min-max / shift instruction per active PE"},
+        {"e_masked_pj", &T::e_masked_pj, 0, 1e6, "pJ",
+         "a PE instruction (ALU, min-max, shift, memory) on a PE under mask 0: decode only"},
+        {"e_load_pj", &T::e_load_pj, 0, 1e6, "pJ",
+         "local-memory byte read (ld / ldx) per active PE, for a 1 KB memory"},
+        {"e_store_pj", &T::e_store_pj, 0, 1e6, "pJ",
+         "local-memory byte write (st / stx) per active PE, for a 1 KB memory"},
+        {"mem_size_exp", &T::mem_size_exp, 0, 2, "",
+         "local-memory access energy scales as (mem_bytes / 1024)^mem_size_exp"},
+        {"e_ring_hop_pj", &T::e_ring_hop_pj, 0, 1e6, "pJ",
+         "one hop of rxl / rxr on one PE (every PE's ring register moves)"},
+        {"e_mask_pj", &T::e_mask_pj, 0, 1e6, "pJ", "mask / status instruction, per PE"},
+        {"e_cp_pj", &T::e_cp_pj, 0, 1e6, "pJ",
+         "CP instruction: 32-bit ALU and register file (branches, param block, ...)"},
+        {"e_issue_pj", &T::e_issue_pj, 0, 1e6, "pJ",
+         "every instruction: fetch of its 64-bit word, decode and broadcast"},
+        {"e_ext_byte_pj", &T::e_ext_byte_pj, 0, 1e7, "pJ",
+         "external-memory byte of xld / xst (board DRAM; not scaled by energy_scale)"},
+        {"e_ext_xfer_pj", &T::e_ext_xfer_pj, 0, 1e8, "pJ",
+         "external-memory transfer setup, per xld / xst (not scaled by energy_scale)"},
+        {"e_video_byte_pj", &T::e_video_byte_pj, 0, 1e6, "pJ",
+         "video byte of vin / vout (P per line), line buffer access"},
+        {"s_pe_clock_pj", &T::s_pe_clock_pj, 0, 1e6, "pJ/cycle", "clock tree of one PE per cycle"},
+        {"s_cp_clock_pj", &T::s_cp_clock_pj, 0, 1e6, "pJ/cycle", "clock tree of the CP per cycle"},
+        {"s_pe_leak_uw", &T::s_pe_leak_uw, 0, 1e6, "uW",
+         "leakage of one PE (not scaled by energy_scale)"},
+        {"s_cp_leak_uw", &T::s_cp_leak_uw, 0, 1e6, "uW",
+         "leakage of the CP (not scaled by energy_scale)"},
+        {"energy_scale", &T::energy_scale, 0.001, 10000, "x",
+         "technology factor on every on-chip pJ figure (1 = the 45 nm table; docs/energy.md 4)"},
+    };
+    return f;
+}
+
+bool EnergyTable::has(std::string_view name) {
+    for (const Field& f : fields())
+        if (name == f.name) return true;
+    return false;
+}
+
+void EnergyTable::set(std::string_view name, double value) {
+    for (const Field& f : fields()) {
+        if (name != f.name) continue;
+        if (!std::isfinite(value) || value < f.min || value > f.max)
+            throw ConfigError("invalid value " + num(value) + " for " + std::string(name) +
+                              ": allowed " + range_of(f) + (*f.unit ? " " : "") + f.unit);
+        this->*f.ptr = value;
+        return;
+    }
+    std::string names;
+    for (const Field& f : fields()) names += std::string(names.empty() ? "" : ", ") + f.name;
+    throw ConfigError("unknown energy parameter '" + std::string(name) + "' (known: " + names +
+                      ")");
+}
+
+double EnergyTable::get(std::string_view name) const {
+    for (const Field& f : fields())
+        if (name == f.name) return this->*f.ptr;
+    throw ConfigError("unknown energy parameter '" + std::string(name) + "'");
+}
+
+void EnergyTable::validate() const {
+    for (const Field& f : fields()) {
+        const double v = this->*f.ptr;
+        if (!std::isfinite(v) || v < f.min || v > f.max)
+            throw ConfigError("invalid value " + num(v) + " for " + f.name + ": allowed " +
+                              range_of(f) + (*f.unit ? " " : "") + f.unit);
+    }
+}
+
+std::vector<ParamInfo> EnergyTable::list() const {
+    std::vector<ParamInfo> out;
+    for (const Field& f : fields())
+        out.push_back(
+            {f.name, num(this->*f.ptr), range_of(f), f.unit, "energy", f.doc, true, false});
+    return out;
+}
+
+EnergyEvents energy_events(const Stats& s, uint64_t pes, uint64_t cycles) {
+    EnergyEvents e;
+    e.pes = pes;
+    e.cycles = cycles;
+    e.ring_pe_hops = s.ring_hops * pes;
+    e.ext_bytes = s.ext_bytes;
+    for (const OpInfo& i : all_ops()) {
+        const size_t o = static_cast<size_t>(i.op);
+        const uint64_t n = s.op_counts[o], lanes = s.op_lanes[o];
+        if (n == 0) continue;
+        const uint64_t masked = n * pes - lanes;
+        switch (i.cost_class) {
+            case CostClass::Alu:
+                e.alu_lanes += lanes;
+                e.masked_lanes += masked;
+                break;
+            case CostClass::MinMax:
+                e.minmax_lanes += lanes;
+                e.masked_lanes += masked;
+                break;
+            case CostClass::Shift:
+                e.shift_lanes += lanes;
+                e.masked_lanes += masked;
+                break;
+            case CostClass::Mem:
+            case CostClass::Indirect:
+                (i.op == Op::ST || i.op == Op::STX ? e.store_lanes : e.load_lanes) += lanes;
+                e.masked_lanes += masked;
+                break;
+            case CostClass::Ring:
+                break;  // hops x P above
+            case CostClass::Mask:
+            case CostClass::Status:
+                e.mask_pe_ops += n * pes;
+                break;
+            case CostClass::Cp:
+                e.cp_instructions += n;
+                break;
+            case CostClass::Video:
+                e.video_bytes += n * pes;
+                break;
+            case CostClass::Xfer:
+                e.ext_transfers += n;
+                break;
+            case CostClass::Phase:
+                continue;  // a marker, not an instruction
+        }
+        e.instructions += n;
+    }
+    return e;
+}
+
+const char* to_string(EnergyClass c) {
+    static const char* const names[kEnergyClassCount] = {
+        "alu",  "minmax", "shift", "regfile",  "masked",   "load",  "store",     "ring",
+        "mask", "cp",     "issue", "ext_byte", "ext_xfer", "video", "static_pe", "static_cp"};
+    const auto i = static_cast<size_t>(c);
+    return i < kEnergyClassCount ? names[i] : "?";
+}
+
+EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg) {
+    const EnergyTable& t = cfg.energy;
+    EnergyReport r;
+    r.events = energy_events(s, static_cast<uint64_t>(cfg.pes), cycles);
+    const EnergyEvents& e = r.events;
+    const double k = t.energy_scale;
+    const double mem = std::pow(static_cast<double>(cfg.mem_bytes) / 1024.0, t.mem_size_exp);
+    const auto d = [](uint64_t n) { return static_cast<double>(n); };
+    auto& c = r.by_class_pj;
+    c[size_t(EnergyClass::Alu)] = d(e.alu_lanes) * t.e_alu_pj * k;
+    c[size_t(EnergyClass::MinMax)] = d(e.minmax_lanes) * t.e_minmax_pj * k;
+    c[size_t(EnergyClass::Shift)] = d(e.shift_lanes) * t.e_shift_pj * k;
+    c[size_t(EnergyClass::RegFile)] =
+        d(e.alu_lanes + e.minmax_lanes + e.shift_lanes) * t.e_rf_pj * k;
+    c[size_t(EnergyClass::Masked)] = d(e.masked_lanes) * t.e_masked_pj * k;
+    c[size_t(EnergyClass::Load)] = d(e.load_lanes) * t.e_load_pj * mem * k;
+    c[size_t(EnergyClass::Store)] = d(e.store_lanes) * t.e_store_pj * mem * k;
+    c[size_t(EnergyClass::Ring)] = d(e.ring_pe_hops) * t.e_ring_hop_pj * k;
+    c[size_t(EnergyClass::Mask)] = d(e.mask_pe_ops) * t.e_mask_pj * k;
+    c[size_t(EnergyClass::Cp)] = d(e.cp_instructions) * t.e_cp_pj * k;
+    c[size_t(EnergyClass::Issue)] = d(e.instructions) * t.e_issue_pj * k;
+    c[size_t(EnergyClass::ExtByte)] = d(e.ext_bytes) * t.e_ext_byte_pj;
+    c[size_t(EnergyClass::ExtXfer)] = d(e.ext_transfers) * t.e_ext_xfer_pj;
+    c[size_t(EnergyClass::Video)] = d(e.video_bytes) * t.e_video_byte_pj * k;
+    r.seconds = cfg.seconds(cycles);
+    // uW x s = 1e-6 J = 1e6 pJ
+    c[size_t(EnergyClass::StaticPe)] =
+        d(e.pes) * (d(cycles) * t.s_pe_clock_pj * k + r.seconds * t.s_pe_leak_uw * 1e6);
+    c[size_t(EnergyClass::StaticCp)] =
+        d(cycles) * t.s_cp_clock_pj * k + r.seconds * t.s_cp_leak_uw * 1e6;
+    for (int i = 0; i < kEnergyClassCount; ++i)
+        (i >= static_cast<int>(EnergyClass::StaticPe) ? r.static_pj : r.dynamic_pj) += c[size_t(i)];
+    r.total_pj = r.dynamic_pj + r.static_pj;
+    r.power_mw = r.seconds > 0 ? r.total_pj * 1e-9 / r.seconds : 0.0;
+    return r;
+}
+
+}  // namespace imap::isa

@@ -1,0 +1,198 @@
+// The energy model (docs/energy.md): event counts against hand-counted
+// programs, energy against the events x energies recomputed here, static
+// energy against cycles x PEs, and the table's ranges.
+#define BOOST_TEST_MODULE isa_energy
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <sstream>
+
+#include "helpers.hpp"
+#include "imap/isa/energy.hpp"
+
+using namespace isatest;
+
+namespace {
+
+// Five PE instructions under a mask that leaves PE 3 off (P = 4), plus
+// unmasked ones around it. Counted by hand:
+//   pidx, cltui          ALU     4 + 4 active lanes
+//   mif / mend           mask    2 x 4 PE ops
+//   addi                 ALU     3 active, 1 masked
+//   max                  minmax  3 active, 1 masked
+//   shli                 shift   3 active, 1 masked
+//   st                   store   3 active, 1 masked
+//   rxl #2               ring    2 hops x 4 PEs (every ring register moves)
+//   ld                   load    4 active
+//   halt                 CP      1
+const char* kMasked = R"(
+        pidx r0, #0
+        cltui r0, #3
+        mif
+          addi r1, r1, #1
+          max r2, r1, r0
+          shli r5, r1, #1
+          st r1, [#5]
+          rxl r3, r1, #2
+        mend
+        ld r4, [#5]
+        halt)";
+
+void check_hand_counts(const EnergyEvents& e) {
+    BOOST_TEST(e.alu_lanes == 4u + 4u + 3u);
+    BOOST_TEST(e.minmax_lanes == 3u);
+    BOOST_TEST(e.shift_lanes == 3u);
+    BOOST_TEST(e.store_lanes == 3u);
+    BOOST_TEST(e.load_lanes == 4u);
+    BOOST_TEST(e.masked_lanes == 4u);  // addi, max, shli, st on PE 3
+    BOOST_TEST(e.ring_pe_hops == 8u);
+    BOOST_TEST(e.mask_pe_ops == 8u);
+    BOOST_TEST(e.cp_instructions == 1u);
+    BOOST_TEST(e.instructions == 11u);
+    BOOST_TEST(e.ext_bytes == 0u);
+    BOOST_TEST(e.ext_transfers == 0u);
+    BOOST_TEST(e.video_bytes == 0u);
+    BOOST_TEST(e.pes == 4u);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(events_of_a_masked_program_counted_by_hand) {
+    auto m = run(kMasked, small(4));
+    BOOST_REQUIRE(m->halted());
+    check_hand_counts(energy_events(m->stats(), 4, m->cycles()));
+    BOOST_TEST(m->stats().op_lanes[static_cast<size_t>(Op::ADDI)] == 3u);
+    BOOST_TEST(m->stats().ring_hops == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(single_steps_and_cycle_limits_count_the_same) {
+    // exec_one (single steps) and partial runs (a cycle limit mid-run) book
+    // the active lanes as the straight-line runs do.
+    Machine a(small(4));
+    a.load(assemble_string(kMasked, "t.s"));
+    while (!a.halted()) a.step();
+    check_hand_counts(energy_events(a.stats(), 4, a.cycles()));
+    Machine b(small(4));
+    b.load(assemble_string(kMasked, "t.s"));
+    for (uint64_t lim = 1; !b.halted(); ++lim) b.run(lim);
+    check_hand_counts(energy_events(b.stats(), 4, b.cycles()));
+}
+
+BOOST_AUTO_TEST_CASE(external_bytes_are_len_times_active_pes) {
+    MachineConfig cfg = small(4);
+    cfg.ext_bytes = 64;
+    auto m = run(R"(
+        cli c1, #10
+        cli c2, #4
+        cli c3, #20
+        pidx r0, #0
+        ceqi r0, #0
+        xld [c3 + 1], ext[c1], c2     ; 4 bytes x 4 PEs
+        mif                           ; PE 0 only
+          xst [c3 + 1], ext[c1], c2   ; 4 bytes x 1 PE
+        mend
+        halt)",
+                 cfg);
+    BOOST_REQUIRE(m->halted());
+    const EnergyEvents e = energy_events(m->stats(), 4, m->cycles());
+    BOOST_TEST(e.ext_bytes == 16u + 4u);
+    BOOST_TEST(e.ext_transfers == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(energy_is_events_times_energies) {
+    MachineConfig cfg = small(4);
+    cfg.mem_bytes = 4096;  // local-memory energy x (4096 / 1024)^0.5 = 2
+    EnergyTable& t = cfg.energy;
+    // distinct values, so that a count charged to the wrong class shows
+    t.e_alu_pj = 1;
+    t.e_minmax_pj = 3;
+    t.e_shift_pj = 5;
+    t.e_rf_pj = 7;
+    t.e_masked_pj = 11;
+    t.e_load_pj = 13;
+    t.e_store_pj = 17;
+    t.mem_size_exp = 0.5;
+    t.e_ring_hop_pj = 19;
+    t.e_mask_pj = 23;
+    t.e_cp_pj = 29;
+    t.e_issue_pj = 31;
+    t.e_ext_byte_pj = 37;
+    t.e_ext_xfer_pj = 41;
+    t.e_video_byte_pj = 43;
+    t.s_pe_clock_pj = 47;
+    t.s_cp_clock_pj = 53;
+    t.s_pe_leak_uw = 59;
+    t.s_cp_leak_uw = 61;
+    t.energy_scale = 2;
+    auto m = run(kMasked, cfg);
+    const uint64_t cyc = m->cycles();
+    const EnergyReport r = energy_of(m->stats(), cyc, cfg);
+    // From the hand counts above, not from energy_events.
+    const double k = 2;
+    const double dyn = k * (11 * 1 + 3 * 3 + 3 * 5 + (11 + 3 + 3) * 7 + 4 * 11 + 4 * 13 * 2.0 +
+                            3 * 17 * 2.0 + 8 * 19 + 8 * 23 + 1 * 29 + 11 * 31);
+    const double sec = static_cast<double>(cyc) / 40e6;
+    const double stat = 4.0 * (static_cast<double>(cyc) * 47 * k + sec * 59e6) +
+                        (static_cast<double>(cyc) * 53 * k + sec * 61e6);
+    const auto tol = boost::test_tools::tolerance(1e-12);
+    BOOST_TEST(r.dynamic_pj == dyn, tol);
+    BOOST_TEST(r.static_pj == stat, tol);
+    BOOST_TEST(r.total_pj == dyn + stat, tol);
+    BOOST_TEST(r.power_mw == (dyn + stat) * 1e-12 / sec * 1e3, tol);
+    BOOST_TEST(r.by_class_pj[size_t(EnergyClass::Load)] == 4 * 13 * 2.0 * k, tol);
+    BOOST_TEST(r.by_class_pj[size_t(EnergyClass::Masked)] == 4 * 11 * k, tol);
+    double sum = 0;
+    for (double x : r.by_class_pj) sum += x;
+    BOOST_TEST(sum == r.total_pj, tol);
+}
+
+BOOST_AUTO_TEST_CASE(static_energy_scales_with_cycles_times_pes) {
+    // The same program at P and 2P (same cycles: no P-dependent cost), and
+    // a longer program (more cycles); the CP's static part subtracted.
+    auto stat_pe = [](int pes, const std::string& src) {
+        MachineConfig cfg = small(pes);
+        auto m = run(src, cfg);
+        const EnergyReport r = energy_of(m->stats(), m->cycles(), cfg);
+        return std::make_pair(r.by_class_pj[size_t(EnergyClass::StaticPe)], m->cycles());
+    };
+    const auto [e4, c4] = stat_pe(4, kMasked);
+    const auto [e8, c8] = stat_pe(8, kMasked);
+    BOOST_REQUIRE(c4 == c8);
+    BOOST_TEST(e4 > 0);
+    BOOST_TEST(e8 / e4 == 2.0, boost::test_tools::tolerance(1e-12));
+    const std::string longer = std::string(kMasked).insert(1, "nop\nnop\nnop\nnop\nnop\n");
+    const auto [l4, lc4] = stat_pe(4, longer);
+    BOOST_REQUIRE(lc4 == c4 + 5);
+    BOOST_TEST(l4 / e4 == static_cast<double>(lc4) / static_cast<double>(c4),
+               boost::test_tools::tolerance(1e-12));
+    // per PE-cycle: clock tree + leakage per cycle at 40 MHz
+    const EnergyTable t;
+    BOOST_TEST(e4 / (4.0 * static_cast<double>(c4)) == t.s_pe_clock_pj + t.s_pe_leak_uw / 40.0,
+               boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
+    for (const EnergyTable::Field& f : EnergyTable::fields()) {
+        BOOST_TEST_INFO(f.name);
+        MachineConfig c;
+        BOOST_CHECK_NO_THROW(c.set(f.name, "0.5"));
+        BOOST_TEST(c.energy.get(f.name) == 0.5);
+        for (const double bad : {f.min - 1, f.max * 2}) {
+            std::ostringstream v;
+            v << bad;
+            try {
+                c.set(f.name, v.str());
+                BOOST_ERROR("accepted " << v.str());
+            } catch (const ConfigError& e) {
+                const std::string w = e.what();
+                BOOST_TEST(w.find(f.name) != std::string::npos, w);
+                BOOST_TEST(w.find("allowed ") != std::string::npos, w);
+            }
+        }
+        BOOST_CHECK_THROW(c.set(f.name, "abc"), ConfigError);
+        BOOST_CHECK_THROW(c.set(f.name, "nan"), ConfigError);
+        c.energy.*f.ptr = f.max * 2;
+        BOOST_CHECK_THROW(c.validate(), ConfigError);
+    }
+    MachineConfig c;
+    BOOST_CHECK_THROW(c.set("e_nothing_pj", "1"), ConfigError);
+}
