@@ -203,7 +203,6 @@ struct FramePlan {
     int span() const { return f.bidir || spare ? 2 : 1; }
 };
 
-
 // Where single mode's spilled pointer columns go (docs/firmware.md,
 // section 3): Cheaper picks the spare layout where it is feasible and its
 // cost estimate beats the external path's; External never uses spares;
