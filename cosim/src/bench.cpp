@@ -110,6 +110,7 @@ void Bench::drive_straps(Ports& p, const Job& j) {
     p.c_video_line = c.video_line;
     p.c_xfer_setup = c.xfer_setup;
     p.c_ext_bpc = c.ext_bytes_per_cycle;
+    p.c_ext_beat = c.ext_beat;
     p.c_shift_bits = c.shift_bits;
     p.c_minmax_extra = c.minmax_extra;
     p.cfg_prog_len = static_cast<uint32_t>(j.prog->code.size());
@@ -447,6 +448,13 @@ int Bench::dpi_vid_pixel(int port, int y, int x) {
     if (y < 0 || y >= im.height || x < 0 || x >= im.width) return 0;
     return im
         .pixels[static_cast<size_t>(y) * static_cast<size_t>(im.width) + static_cast<size_t>(x)];
+}
+
+// The board's camera: the same timing as the instruction-set model's video
+// port (isa::BoardTiming, a board part outside the chip).
+uint64_t Bench::dpi_vid_ready(int port, int y, int x) {
+    if (!job_ || port < 0 || port > 1) return 0;
+    return job_->cfg.camera_ready_cycle(job_->input[port].width, y, x, job_->cfg.pes);
 }
 
 void Bench::dpi_vid_put(int port, int y, int x, int v) {

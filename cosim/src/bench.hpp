@@ -196,6 +196,7 @@ class Bench : public sc_core::sc_module {
     void dpi_assert(const char* name, int pe);
     int dpi_vid_check(int dir_out, int port, int y);
     int dpi_vid_pixel(int port, int y, int x);
+    uint64_t dpi_vid_ready(int port, int y, int x);
     void dpi_vid_put(int port, int y, int x, int v);
 
     uint64_t clocks() const { return clocks_; }

@@ -65,6 +65,10 @@ int imap_rtl_vid_pixel(int port, int y, int x) {
     return g_bench ? g_bench->dpi_vid_pixel(port, y, x) : 0;
 }
 
+long long imap_rtl_vid_ready(int port, int y, int x) {
+    return g_bench ? static_cast<long long>(g_bench->dpi_vid_ready(port, y, x)) : 0;
+}
+
 void imap_rtl_vid_put(int port, int y, int x, int val) {
     if (g_bench) g_bench->dpi_vid_put(port, y, x, val);
 }

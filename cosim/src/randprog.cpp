@@ -97,12 +97,16 @@ constexpr int kBase0 = 8, kStat = 11, kLoop0 = 12;
 class Gen {
   public:
     Gen(uint64_t seed, const GenOptions& o, RandomProgram& out)
-        : rng_(seed * 0x9E3779B97F4A7C15ull + 1), o_(o), out_(out) {}
+        : rng_(seed * 0x9E3779B97F4A7C15ull + 1),
+          board_rng_(seed * 0xD1B54A32D192ED03ull + 7),
+          o_(o),
+          out_(out) {}
 
     void run();
 
   private:
     std::mt19937_64 rng_;
+    std::mt19937_64 board_rng_;  // board timing draws (ext_beat, camera)
     const GenOptions& o_;
     RandomProgram& out_;
     std::vector<uint64_t> code_;
@@ -684,6 +688,16 @@ void Gen::run() {
             std::min<uint32_t>(bpc[u(10)], static_cast<uint32_t>(detail::kHdlXrows));
         c.shift_bits = 1 + static_cast<uint32_t>(u(7));
         c.minmax_extra = static_cast<uint32_t>(u(3));
+        // Board timing (a generator of its own, so that the programs of a
+        // seed stay those of earlier versions): a path slower than a byte
+        // per cycle, and a camera whose lines arrive while the program runs.
+        auto b = [&](uint64_t n) { return board_rng_() % n; };
+        if (b(3) == 0) c.ext_beat = 1 + static_cast<uint32_t>(b(4));
+        if (b(4) == 0) {
+            static const double pix[] = {2.5, 5, 10, 40};
+            cfg.board.camera_pixel_mhz = pix[b(4)];
+            cfg.board.camera_hblank_px = static_cast<double>(b(17));
+        }
     }
     if (chance(20)) cfg.pe_regs = 8;
     NR_ = cfg.pe_regs;

@@ -54,7 +54,7 @@ const isa::ParamInfo* machine_param(const std::vector<isa::ParamInfo>& list, con
 
 ValueType machine_type(const isa::ParamInfo& pi) {
     if (pi.range.find('|') != std::string::npos) return ValueType::Text;
-    if (pi.name == "clock_mhz" || pi.group == "energy" ||
+    if (pi.name == "clock_mhz" || pi.group == "energy" || pi.group == "board" ||
         pi.range.find('.') != pi.range.rfind("..") ||
         pi.range.find("exclusive") != std::string::npos)
         return ValueType::Real;

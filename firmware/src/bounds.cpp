@@ -53,8 +53,28 @@ FrameBounds frame_bounds(const golden::Params& p, const FramePlan& plan,
     b.node_cycles = node_cycles(p, plan, cfg);
     b.states = H * plan.f.valid_states;
 
-    b.phases.push_back({"video_in", H * 2 * segs * k.video_line,
-                        "every ROI line of both images through the video port"});
+    // With a timed camera the lines also cannot come faster than it
+    // delivers them: from the ROI's first segment to its last. This holds
+    // for a frame of one batch, whose vins are all in one stretch of the
+    // phase that starts before the first segment has arrived (the program's
+    // prologue is shorter than P pixel times); a later batch's lines may
+    // have arrived while the previous batch computed.
+    int64_t video_in = H * 2 * segs * k.video_line;
+    const char* video_why = "every ROI line of both images through the video port";
+    if (cfg.board.camera_timed() && plan.batches.size() == 1) {
+        // the narrowest image that holds the ROI: its lines come soonest
+        const int width = plan.roi.x0 + plan.roi.w, np = static_cast<int>(P);
+        const int64_t first =
+            static_cast<int64_t>(cfg.camera_ready_cycle(width, plan.roi.y0, plan.roi.x0, np));
+        const int64_t last = static_cast<int64_t>(
+            cfg.camera_ready_cycle(width, plan.roi.y0 + plan.roi.h - 1,
+                                   plan.roi.x0 + static_cast<int>((segs - 1) * P), np));
+        if (last - first + k.video_line > video_in) {
+            video_in = last - first + k.video_line;
+            video_why = "the camera's lines from the ROI's first segment to its last";
+        }
+    }
+    b.phases.push_back({"video_in", video_in, video_why});
     if (plan.rl.bound_in > 0)
         b.phases.push_back({"relayout_in", plan.rl.bound_in,
                             "ring: byte-hops over P links and bytes into every arc"});
@@ -73,7 +93,9 @@ FrameBounds frame_bounds(const golden::Params& p, const FramePlan& plan,
     const int64_t excess = std::max<int64_t>(0, ptr_bytes - room);
     if (excess > 0)
         b.phases.push_back(
-            {"spill", 2 * (int64_t{k.xfer_setup} + ceil_div(excess, k.ext_bytes_per_cycle)),
+            {"spill",
+             2 * (int64_t{k.xfer_setup} +
+                  ceil_div(excess, k.ext_bytes_per_cycle) * int64_t{k.ext_beat}),
              "pointer bytes beyond local memory, out and back over the external path"});
 
     // Backtrack: every line's path (one per kind) crosses its columns one

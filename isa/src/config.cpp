@@ -84,6 +84,10 @@ const std::vector<CostTable::Field>& CostTable::fields() {
          "xld / xst: bytes per cycle of the external-memory path shared by the whole array "
          "(IMAPCAR: 8)",
          false},
+        {"ext_beat", &CostTable::ext_beat, 1, 1000000, "cycles",
+         "xld / xst: cycles per ext_bytes_per_cycle bytes (1 = every cycle; more = a path "
+         "slower than a byte per cycle)",
+         false},
         {"shift_bits", &CostTable::shift_bits, 1, 7, "bits/cycle",
          "shifter: bits shifted per cycle (7 = barrel shifter, 1 = one bit per cycle)", true},
         {"minmax_extra", &CostTable::minmax_extra, 0, 1000000, "cycles",
@@ -150,6 +154,7 @@ void MachineConfig::validate() const {
     if (watchdog_cycles < 1 || watchdog_cycles > (1ull << 62))
         bad("watchdog_cycles", std::to_string(watchdog_cycles), "1..4611686018427387904");
     costs.validate();
+    board.validate();
     energy.validate();
 }
 
@@ -171,11 +176,19 @@ std::vector<ParamInfo> MachineConfig::list() const {
     add(kMachineFields[7], indirect ? "on" : "off");
     add(kMachineFields[8], std::to_string(watchdog_cycles));
     for (ParamInfo& p : costs.list()) out.push_back(std::move(p));
+    for (ParamInfo& p : board.list()) out.push_back(std::move(p));
     for (ParamInfo& p : energy.list()) out.push_back(std::move(p));
     return out;
 }
 
 void MachineConfig::set(std::string_view name, std::string_view value) {
+    set_one(name, value);
+    if (name == "xfer_setup" || name == "ext_bytes_per_cycle" || name == "ext_beat")
+        board.ext_mb_s = 0;  // the cycle costs as set
+    derive_board_costs();
+}
+
+void MachineConfig::set_one(std::string_view name, std::string_view value) {
     const std::string v(value);
     auto in = [&](int64_t lo, int64_t hi) {
         const int64_t x = parse_int(name, value);
@@ -210,14 +223,17 @@ void MachineConfig::set(std::string_view name, std::string_view value) {
         if (v.empty() || errno != 0 || *end != '\0' || !(d > 0.0) || d > 100000.0)
             bad(name, "'" + v + "'", "a number > 0 and <= 100000");
         clock_mhz = d;
-    } else if (EnergyTable::has(name)) {
+    } else if (EnergyTable::has(name) || BoardTiming::has(name)) {
         errno = 0;
         char* end = nullptr;
         const double d = std::strtod(v.c_str(), &end);
         if (v.empty() || errno != 0 || end == v.c_str() || *end != '\0' || !std::isfinite(d))
             throw ConfigError("invalid value '" + v + "' for " + std::string(name) +
                               ": expected a number");
-        energy.set(name, d);
+        if (BoardTiming::has(name))
+            board.set(name, d);
+        else
+            energy.set(name, d);
     } else {
         bool is_cost = false;
         for (const CostTable::Field& f : CostTable::fields()) is_cost |= name == f.name;
@@ -225,6 +241,8 @@ void MachineConfig::set(std::string_view name, std::string_view value) {
             std::string names;
             for (const MachineField& f : kMachineFields) names += std::string(f.name) + ", ";
             for (const CostTable::Field& f : CostTable::fields())
+                names += std::string(f.name) + ", ";
+            for (const BoardTiming::Field& f : BoardTiming::fields())
                 names += std::string(f.name) + ", ";
             for (const EnergyTable::Field& f : EnergyTable::fields())
                 names += std::string(f.name) + (&f == &EnergyTable::fields().back() ? "" : ", ");

@@ -486,6 +486,19 @@ struct Exec {
         }
     }
 
+    // A timed camera (docs/isa.md 2.3): the vin waits until its pixels have
+    // arrived; the wait is added to the instruction's cycles.
+    static void camera_wait(Machine& m, int port, int y, int x) {
+        if (!m.cfg_.board.camera_timed()) return;
+        const int w = m.video_->input_width(port);
+        if (w < 0)
+            throw std::runtime_error(
+                "the camera timing (camera_pixel_mhz) needs the image width, and this video "
+                "port does not give it");
+        const uint64_t ready = m.cfg_.camera_ready_cycle(w, y, x, m.P_);
+        if (ready > m.cycles_) m.extra_ = ready - m.cycles_;
+    }
+
     static void video(Machine& m, const Decoded& d, bool out) {
         const char* mn = out ? "vout" : "vin";
         const size_t P = static_cast<size_t>(m.P_);
@@ -500,9 +513,12 @@ struct Exec {
             if (out) {
                 if (!m.video_->write_row(port, yi, xi, a, m.P_))
                     m.video_->write_line(port, yi, xi, row, m.P_);
-            } else if (!m.video_->read_row(port, yi, xi, a, m.P_)) {
-                m.video_->read_line(port, yi, xi, m.scratch_, m.P_);
-                std::memcpy(row, m.scratch_, P);
+            } else {
+                camera_wait(m, port, yi, xi);
+                if (!m.video_->read_row(port, yi, xi, a, m.P_)) {
+                    m.video_->read_line(port, yi, xi, m.scratch_, m.P_);
+                    std::memcpy(row, m.scratch_, P);
+                }
             }
         } catch (const std::exception& e) {
             m.fault(std::string(mn) + " port " + std::to_string(d.d) + " line " +

@@ -56,6 +56,7 @@ module imap_cp
     input logic [31:0] c_video_line,
     input logic [31:0] c_xfer_setup,
     input logic [31:0] c_ext_bpc,
+    input logic [31:0] c_ext_beat,
     input logic [31:0] c_shift_bits,
     input logic [31:0] c_minmax_extra,
     input logic [31:0] cfg_prog_len,
@@ -96,6 +97,7 @@ module imap_cp
     output logic [31:0] vid_py,
     output logic [31:0] vid_px,
     input logic [1:0] vid_status,  // of the last vid_open: 0 ok, 1 no port, 2 bad line
+    input logic [63:0] vid_ready,  // ... vin: the cycle its pixels have arrived (camera)
     // status
     // performance-counter events (imap_perf)
     output logic ev_cycle,  // this clock is a machine cycle
@@ -158,6 +160,7 @@ module imap_cp
   logic [31:0] x_hcyc;
   // transfer engine
   logic x_setup;  // in the setup cycles
+  logic [31:0] x_beat;  // cycles left before the current beat moves its bytes (c_ext_beat)
   logic [47:0] x_brem;  // bytes still to cross the path
   logic [16:0] x_act;  // active PEs of the transfer (their bytes cross the path)
   logic [31:0] x_cred;  // bytes of the row being filled
@@ -355,6 +358,7 @@ module imap_cp
   logic [16:0] xa_now;  // transfer: active PEs (counted in its first cycle)
   logic [47:0] xb_now;  // transfer: bytes still to cross at the start of this cycle
   logic x_zn;  // a zero-cost instruction (phase; xld / xst moving nothing without setup)
+  logic x_vwait;  // vin waiting for the camera: its pixels arrive at vid_ready
   imap_pkg::fault_t x_flt;  // fault raised in this cycle (first cycle only)
   logic [31:0] x_fpe;
   logic [63:0] x_fad;
@@ -377,6 +381,7 @@ module imap_cp
     xa_now = x_first ? (`IMAP_MUT(14) ? 17'(P) : active_now) : x_act;
     xb_now = x_first ? 48'(x_len) * 48'(xa_now) : x_brem;
     x_zn = x_zero || (x_kind == imap_pkg::K_XFER && !x_setup && xb_now == 48'd0);
+    x_vwait = x_v && x_op == imap_pkg::OP_VIN && mcycle < vid_ready;
     xc = 32'h0;
     xnr = 32'h0;
     case (x_kind)
@@ -392,6 +397,7 @@ module imap_cp
       imap_pkg::K_XFER: begin
         if (x_zn) x_last = 1'b1;
         else if (x_setup) x_last = (x_cnt == 32'd0) && (xb_now == 48'd0);
+        else if (x_beat != 32'd0) x_last = 1'b0;  // the path is busy: bytes move at the beat's end
         else begin
           // data cycle: c_ext_bpc bytes cross the path; a row is complete
           // when the bytes of all active PEs have crossed
@@ -409,7 +415,7 @@ module imap_cp
             x_rows = x_len - 32'd1;
         end
       end
-      default: x_last = (x_cnt == 32'd0);
+      default: x_last = (x_cnt == 32'd0) && !x_vwait;
     endcase
 
     // faults, checked in the first cycle (precise: nothing is committed)
@@ -851,13 +857,17 @@ module imap_cp
               x_brem <= xb_now;
               if (x_cnt == 32'd0) x_setup <= 1'b0;
               else x_cnt <= x_cnt - 32'd1;
+            end else if (x_beat != 32'd0) begin
+              x_brem <= xb_now;
+              x_beat <= x_beat - 32'd1;
             end else begin
               x_cred <= x_credn;
               x_rdone <= x_rows;
               x_brem <= x_last ? 48'd0 : xb_now - 48'(c_ext_bpc);
+              x_beat <= c_ext_beat - 32'd1;
             end
           end
-          default: if (x_cnt != 32'd0) x_cnt <= x_cnt - 32'd1;
+          default: if (x_cnt != 32'd0 && !x_vwait) x_cnt <= x_cnt - 32'd1;
         endcase
       end
 
@@ -915,6 +925,7 @@ module imap_cp
         x_hcyc <= c_ring_hop;
         // transfer engine
         x_setup <= (c_xfer_setup != 32'd0);
+        x_beat <= c_ext_beat - 32'd1;
         x_brem <= 48'd0;  // counted in the first cycle (xb_now)
         x_cred <= 32'd0;
         x_rdone <= 32'd0;

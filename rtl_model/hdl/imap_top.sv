@@ -40,6 +40,7 @@ module imap_top
     input logic [31:0] c_video_line,
     input logic [31:0] c_xfer_setup,
     input logic [31:0] c_ext_bpc,
+    input logic [31:0] c_ext_beat,
     input logic [31:0] c_shift_bits,
     input logic [31:0] c_minmax_extra,
     input logic [31:0] cfg_prog_len,
@@ -73,7 +74,8 @@ module imap_top
     output logic [0:0] vid_pport,
     output logic [31:0] vid_py,
     output logic [31:0] vid_px,
-    input logic [1:0] vid_status
+    input logic [1:0] vid_status,
+    input logic [63:0] vid_ready
 );
 
 
@@ -94,7 +96,7 @@ module imap_top
 
   // Configuration registers: the straps are sampled while rst_n = 0 and held
   // during the run (the design's logic depends on registers only).
-  logic [31:0] c_alu_q, c_mem_q, c_indirect_extra_q, c_ring_hop_q, c_mask_q, c_status_q, c_cp_q, c_branch_taken_q, c_video_line_q, c_xfer_setup_q, c_ext_bpc_q, c_shift_bits_q, c_minmax_extra_q, cfg_prog_len_q;
+  logic [31:0] c_alu_q, c_mem_q, c_indirect_extra_q, c_ring_hop_q, c_mask_q, c_status_q, c_cp_q, c_branch_taken_q, c_video_line_q, c_xfer_setup_q, c_ext_bpc_q, c_ext_beat_q, c_shift_bits_q, c_minmax_extra_q, cfg_prog_len_q;
   logic [7:0] cfg_pe_regs_q;
   logic [8:0] cfg_mask_depth_q, cfg_call_depth_q;
   logic cfg_indirect_q, cfg_ext_on_q, cfg_trace_q;
@@ -115,6 +117,7 @@ module imap_top
       c_video_line_q <= c_video_line;
       c_xfer_setup_q <= c_xfer_setup;
       c_ext_bpc_q <= c_ext_bpc;
+      c_ext_beat_q <= c_ext_beat;
       c_shift_bits_q <= c_shift_bits;
       c_minmax_extra_q <= c_minmax_extra;
       cfg_prog_len_q <= cfg_prog_len;
@@ -152,6 +155,7 @@ module imap_top
       .c_video_line(c_video_line_q),
       .c_xfer_setup(c_xfer_setup_q),
       .c_ext_bpc(c_ext_bpc_q),
+      .c_ext_beat(c_ext_beat_q),
       .c_shift_bits(c_shift_bits_q),
       .c_minmax_extra(c_minmax_extra_q),
       .cfg_prog_len(cfg_prog_len_q),

@@ -37,7 +37,8 @@ module imap_board
     input logic [31:0] vid_px,
     input logic [XROWS*8-1:0] rrow[P],
     output logic [P*XROWS*8-1:0] rbus,
-    output logic [1:0] vid_status
+    output logic [1:0] vid_status,
+    output logic [63:0] vid_ready  // of the last vin's vid_open: cycle its pixels have arrived
 );
 
   localparam int EXT_N = EXT_BYTES > 0 ? EXT_BYTES : 1;
@@ -71,6 +72,7 @@ module imap_board
       int st;
       st = imap_rtl_vid_check(int'(vid_out), int'(vid_oport), int'(vid_oy));
       vid_status <= 2'(st);
+      vid_ready <= vid_out ? 64'd0 : 64'(imap_rtl_vid_ready(int'(vid_oport), int'(vid_oy), int'(vid_ox)));
       if (!vid_out && st == 0) begin
         nb = '0;
         for (int p = 0; p < P; p++)

@@ -34,6 +34,9 @@ package imap_dpi_pkg;
   // writes one pixel of an output line (ignored beyond the width).
   import "DPI-C" function int imap_rtl_vid_check(input int dir_out, input int port, input int y);
   import "DPI-C" function int imap_rtl_vid_pixel(input int port, input int y, input int x);
+  // the camera's timing: the machine cycle at which pixels x.. x + P - 1 of
+  // line y have arrived (0 = already there: an ideal camera)
+  import "DPI-C" function longint imap_rtl_vid_ready(input int port, input int y, input int x);
   import "DPI-C" function void imap_rtl_vid_put(input int port, input int y, input int x,
                                                  input int val);
 endpackage

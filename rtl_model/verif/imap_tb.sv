@@ -38,6 +38,7 @@ module imap_tb
     input logic [31:0] c_video_line,
     input logic [31:0] c_xfer_setup,
     input logic [31:0] c_ext_bpc,
+    input logic [31:0] c_ext_beat,
     input logic [31:0] c_shift_bits,
     input logic [31:0] c_minmax_extra,
     input logic [31:0] cfg_prog_len,
@@ -58,6 +59,7 @@ module imap_tb
   logic [P-1:0] xe_pm;
   logic [0:0] vid_oport, vid_pport;
   logic [1:0] vid_status;
+  logic [63:0] vid_ready;
   logic [P*XROWS*8-1:0] rbus;
   logic [XROWS*8-1:0] rrow[P];
 

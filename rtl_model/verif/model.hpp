@@ -26,7 +26,7 @@ struct Ports : sc_core::sc_module {
     sc_core::sc_signal<uint32_t> c_alu{"c_alu"}, c_mem{"c_mem"},
         c_indirect_extra{"c_indirect_extra"}, c_ring_hop{"c_ring_hop"}, c_mask{"c_mask"},
         c_status{"c_status"}, c_cp{"c_cp"}, c_branch_taken{"c_branch_taken"},
-        c_video_line{"c_video_line"}, c_xfer_setup{"c_xfer_setup"}, c_ext_bpc{"c_ext_bpc"},
+        c_video_line{"c_video_line"}, c_xfer_setup{"c_xfer_setup"}, c_ext_bpc{"c_ext_bpc"}, c_ext_beat{"c_ext_beat"},
         c_shift_bits{"c_shift_bits"}, c_minmax_extra{"c_minmax_extra"};
     sc_core::sc_signal<uint32_t> cfg_prog_len{"cfg_prog_len"}, cfg_pe_regs{"cfg_pe_regs"},
         cfg_mask_depth{"cfg_mask_depth"}, cfg_call_depth{"cfg_call_depth"};

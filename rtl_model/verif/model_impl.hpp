@@ -102,6 +102,7 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
         dut_.c_video_line(p.c_video_line);
         dut_.c_xfer_setup(p.c_xfer_setup);
         dut_.c_ext_bpc(p.c_ext_bpc);
+        dut_.c_ext_beat(p.c_ext_beat);
         dut_.c_shift_bits(p.c_shift_bits);
         dut_.c_minmax_extra(p.c_minmax_extra);
         dut_.cfg_prog_len(p.cfg_prog_len);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "cli_test_util.hpp"
+#include "imap/isa/board.hpp"
 #include "imap/isa/energy.hpp"
 
 namespace fs = std::filesystem;
@@ -140,6 +141,13 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
         {"--set energy_scale=0", "energy_scale: allowed 0.001..10000"},
         {"--set s_pe_leak_uw=abc", "invalid value 'abc' for s_pe_leak_uw: expected a number"},
         {"--model nosuch", "--model"},
+        {"--camera pal",
+         "invalid value 'pal' for --camera: expected ideal, ntsc or pixel-clock:MHZ"},
+        {"--camera pixel-clock:0", "--camera"},
+        {"--set ext_mb_s=-1", "invalid value -1 for ext_mb_s: allowed 0..1e+06 MB/s"},
+        {"--set ext_bus_bytes=3.5", "ext_bus_bytes: allowed whole numbers 1..1024"},
+        {"--set camera_pixel_mhz=1e9", "camera_pixel_mhz: allowed 0..100000 MHz"},
+        {"--set ext_beat=0", "ext_beat"},
     };
     for (const auto& [flags, needle] : cases) {
         const Result r = run(std::string("run --out ") + out + " " + flags);
@@ -168,6 +176,28 @@ BOOST_AUTO_TEST_CASE(every_energy_parameter_range_checked_on_the_command_line) {
             BOOST_TEST(r.code == 2);
             BOOST_TEST(r.out.find(std::string("for ") + f.name + ": allowed " + lo.str() + ".." +
                                   hi.str()) != std::string::npos);
+            BOOST_TEST(!fs::exists(out));
+        }
+    }
+    fs::remove_all(d);
+}
+
+// Issue 29 item 1: every board-timing parameter is range-checked on the
+// command line too (exit 2 naming the range), from the table's fields.
+BOOST_AUTO_TEST_CASE(every_board_parameter_range_checked_on_the_command_line) {
+    const fs::path d = tmpdir();
+    const std::string out = (d / "never.png").string();
+    for (const imap::isa::BoardTiming::Field& f : imap::isa::BoardTiming::fields()) {
+        std::ostringstream lo, hi, bad;
+        lo << f.min;
+        hi << f.max;
+        bad << f.max * 10;
+        const Result r = run("run --out " + out + " --set " + f.name + "=" + bad.str());
+        BOOST_TEST_CONTEXT(f.name << "\n" << r.out) {
+            BOOST_TEST(r.code == 2);
+            BOOST_TEST(r.out.find(std::string("for ") + f.name + ": allowed ") !=
+                       std::string::npos);
+            BOOST_TEST(r.out.find(lo.str() + ".." + hi.str()) != std::string::npos);
             BOOST_TEST(!fs::exists(out));
         }
     }
@@ -239,6 +269,9 @@ BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
         "--mode single --D 32 --vote off --frame left",
         "--pes 64 --D 24 --seed-disp 3 --frame right",
         "--pes 8 --size 40x30 --D 12 --set ring_hop=2 --set xfer_setup=20",
+        // board timing: a camera whose lines arrive while the frame runs,
+        // and an external path of 8 bytes every 3 cycles at 300 MHz
+        "--pes 8 --size 128x8 --D 96 --clock-mhz 300 --camera pixel-clock:20",
     };
     for (const char* c : configs) {
         nlohmann::json rep[2];

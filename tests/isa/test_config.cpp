@@ -87,12 +87,14 @@ BOOST_AUTO_TEST_CASE(every_parameter_is_listed_with_docs) {
     MachineConfig c;
     c.costs.ring_hop = 5;
     const std::vector<ParamInfo> l = c.list();
-    BOOST_CHECK_EQUAL(l.size(), 9u + CostTable::fields().size() + EnergyTable::fields().size());
+    BOOST_CHECK_EQUAL(l.size(), 9u + CostTable::fields().size() + BoardTiming::fields().size() +
+                                    EnergyTable::fields().size());
     for (const ParamInfo& p : l) {
         BOOST_CHECK(!p.name.empty());
         BOOST_CHECK(!p.doc.empty());
         BOOST_CHECK(!p.range.empty());
-        BOOST_CHECK(p.group == "machine" || p.group == "cost" || p.group == "energy");
+        BOOST_CHECK(p.group == "machine" || p.group == "cost" || p.group == "board" ||
+                    p.group == "energy");
         if (p.name == "ring_hop") BOOST_CHECK_EQUAL(p.value, "5");
         if (p.name == "pes") BOOST_CHECK(!p.assumption);
         if (p.name == "pe_regs") BOOST_CHECK(p.assumption);

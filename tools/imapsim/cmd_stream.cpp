@@ -121,7 +121,15 @@ Subcommand register_stream(CLI::App& app) {
             g::Roi roi;
             bool has_roi = false;
             const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-            const imap::isa::MachineConfig cfg = parse_machine_flags(o->machine);
+            imap::isa::MachineConfig cfg = parse_machine_flags(o->machine);
+            // The stream's testbench is the camera: a timed camera sets its
+            // line period, and the machine's vin does not wait again.
+            const imap::isa::BoardTiming camera = cfg.board;
+            cfg.board.camera_pixel_mhz = 0;
+            if (camera.camera_timed() && !o->line_us.empty())
+                throw UserError(
+                    "--line-us and a timed camera (--camera, camera_pixel_mhz) both "
+                    "set the line period: give one");
             tb::StreamTiming timing;
             timing.fps = parse_real_flag("--fps", o->fps, 0, 100000, true);
             if (!o->deadline_ms.empty())
@@ -184,6 +192,9 @@ Subcommand register_stream(CLI::App& app) {
             if (!has_roi) roi = {0, 0, size.width, size.height};
             try {
                 g::validate(p, roi, size.width, size.height);
+                if (camera.camera_timed())
+                    timing.line_us =
+                        (size.width + camera.camera_hblank_px) / camera.camera_pixel_mhz;
                 timing.resolve(size.height);
             } catch (const g::ParamError& e) {
                 throw UserError(e.what());

@@ -176,6 +176,16 @@ Subcommand register_sweep(CLI::App& app) {
                 reg("--clock-mhz", "clock_mhz", o->machine.clock_mhz);
                 reg("--mem-bytes", "mem_bytes", o->machine.mem_bytes);
                 reg("--ext-bytes", "ext_bytes", o->machine.ext_bytes);
+                // --camera ideal,ntsc,pixel-clock:5: an axis of camera_pixel_mhz
+                std::string camera_mhz;
+                for (size_t a = 0; a < o->machine.camera.size();) {
+                    size_t b = o->machine.camera.find(',', a);
+                    if (b == std::string::npos) b = o->machine.camera.size();
+                    camera_mhz += (camera_mhz.empty() ? "" : ",") +
+                                  camera_pixel_mhz(o->machine.camera.substr(a, b - a));
+                    a = b + 1;
+                }
+                reg("--camera", "camera_pixel_mhz", camera_mhz);
                 reg("--roi-size", "roi_size", o->roi_size);
                 reg("--D", "D", o->algo.D);
                 reg("--km", "km", o->algo.km);

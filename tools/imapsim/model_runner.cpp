@@ -34,9 +34,29 @@ void add_machine_flags(CLI::App* app, MachineFlags& f) {
     app->add_option("--mem-bytes", f.mem_bytes, "local memory per PE [default: 1024]")->group(grp);
     app->add_option("--ext-bytes", f.ext_bytes, "external memory per PE, 0 = none [default: 65536]")
         ->group(grp);
-    app->add_option("--set", f.sets,
-                    "any machine or cost parameter, NAME=VALUE (e.g. ring_hop=2); repeatable")
+    app->add_option("--camera", f.camera,
+                    "camera timing (docs/isa.md 2.4): ideal (lines already in the line buffer), "
+                    "ntsc (12.27 MHz pixel clock) or pixel-clock:MHZ [default: ideal]")
         ->group(grp);
+    app->add_option("--set", f.sets,
+                    "any machine, cost, board or energy parameter, NAME=VALUE (e.g. ring_hop=2, "
+                    "ext_mb_s=400); repeatable")
+        ->group(grp);
+}
+
+// --camera: the pixel clock it names, in MHz (0 = ideal).
+std::string camera_pixel_mhz(const std::string& v) {
+    if (v == "ideal") return "0";
+    if (v == "ntsc") return "12.2727";  // NTSC square pixels: 780 x 525 x 29.97 Hz
+    const std::string pre = "pixel-clock:";
+    if (v.compare(0, pre.size(), pre) == 0 && v.size() > pre.size()) {
+        const std::string mhz = v.substr(pre.size());
+        char* end = nullptr;
+        const double d = std::strtod(mhz.c_str(), &end);
+        if (*end == '\0' && d > 0) return mhz;
+    }
+    throw UserError("invalid value '" + v +
+                    "' for --camera: expected ideal, ntsc or pixel-clock:MHZ with MHZ > 0");
 }
 
 isa::MachineConfig parse_machine_flags(const MachineFlags& f) {
@@ -53,6 +73,7 @@ isa::MachineConfig parse_machine_flags(const MachineFlags& f) {
     set("--clock-mhz", "clock_mhz", f.clock_mhz);
     set("--mem-bytes", "mem_bytes", f.mem_bytes);
     set("--ext-bytes", "ext_bytes", f.ext_bytes);
+    if (!f.camera.empty()) set("--camera", "camera_pixel_mhz", camera_pixel_mhz(f.camera));
     for (const std::string& s : f.sets) {
         const size_t eq = s.find('=');
         if (eq == std::string::npos || eq == 0)

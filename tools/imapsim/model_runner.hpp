@@ -26,10 +26,14 @@ inline constexpr const char* kDefaultModel = "core";
 // for any machine or cost parameter (docs/isa.md lists them).
 struct MachineFlags {
     std::string pes, clock_mhz, mem_bytes, ext_bytes;
+    std::string camera;  // ideal | ntsc | pixel-clock:MHZ (camera_pixel_mhz)
     std::vector<std::string> sets;
 };
 void add_machine_flags(CLI::App* app, MachineFlags& f);
 imap::isa::MachineConfig parse_machine_flags(const MachineFlags& f);
+// --camera's value (ideal | ntsc | pixel-clock:MHZ) as camera_pixel_mhz;
+// UserError naming the allowed values.
+std::string camera_pixel_mhz(const std::string& v);
 
 // --model rtl / lockstep options (docs/rtl.md). set_rtl_flags() hands them
 // to run_model (kept out of its signature).

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "imap/isa/board.hpp"
 #include "imap/isa/energy.hpp"
 
 namespace imap::isa {
@@ -46,6 +47,7 @@ struct CostTable {
     uint32_t xfer_setup = 8;      // xld / xst fixed part
     uint32_t ext_bytes_per_cycle =
         8;                      // external-memory path of the whole array (shared by all PEs)
+    uint32_t ext_beat = 1;      // cycles per ext_bytes_per_cycle bytes (rates below a byte/cycle)
     uint32_t shift_bits = 7;    // bits the shifter moves per cycle (7 = barrel, 1 = serial)
     uint32_t minmax_extra = 0;  // extra cycles of min / max over alu (0 = one-cycle select)
 
@@ -71,9 +73,11 @@ struct CostTable {
     uint64_t shift_cycles(unsigned n) const {
         return uint64_t{alu} + (n == 0 ? 0 : (n + shift_bits - 1) / shift_bits - 1);
     }
-    // xld / xst of len bytes per PE on A active PEs: their bytes share one path.
+    // xld / xst of len bytes per PE on A active PEs: their bytes share one
+    // path that moves ext_bytes_per_cycle bytes every ext_beat cycles.
     uint64_t xfer_cycles(uint64_t len, uint64_t A) const {
-        return uint64_t{xfer_setup} + (len * A + ext_bytes_per_cycle - 1) / ext_bytes_per_cycle;
+        return uint64_t{xfer_setup} +
+               (len * A + ext_bytes_per_cycle - 1) / ext_bytes_per_cycle * ext_beat;
     }
 };
 
@@ -87,17 +91,31 @@ struct MachineConfig {
     int call_depth = 8;                        // CP return stack depth
     bool indirect = true;                      // per-PE addressing (ldx / stx) present
     uint64_t watchdog_cycles = 2000000000ull;  // runaway-program limit
-    CostTable costs;
+    CostTable costs;     // with the external path's costs derived from `board` (set())
+    BoardTiming board;   // external memory and camera timing (docs/isa.md 2.3)
     EnergyTable energy;  // energies per event (docs/energy.md); no effect on the run
 
     // Throws ConfigError naming the first invalid parameter and its range.
     void validate() const;
     // Every parameter (machine, cost and energy), for reports.
     std::vector<ParamInfo> list() const;
-    // Set any parameter (machine, cost or energy) from text, as on a command
-    // line: set("pes", "128"), set("ring_hop", "2"), set("indirect", "off"),
-    // set("e_alu_pj", "0.5").
+    // Set any parameter (machine, cost, board or energy) from text, as on a
+    // command line: set("pes", "128"), set("ring_hop", "2"), set("indirect",
+    // "off"), set("e_alu_pj", "0.5"), set("ext_mb_s", "400"). After every
+    // set the external path's cycle costs follow the board timing at the
+    // clock (BoardTiming::derive_costs); setting xfer_setup,
+    // ext_bytes_per_cycle or ext_beat itself turns that off (ext_mb_s = 0):
+    // the cycle costs then apply as set.
     void set(std::string_view name, std::string_view value);
+    // set() of one parameter without the derivation that follows it.
+    void set_one(std::string_view name, std::string_view value);
+    // The external path's costs from the board timing at clock_mhz (set()
+    // calls it; call it after changing clock_mhz or board directly).
+    void derive_board_costs() { board.derive_costs(clock_mhz, costs); }
+    // Cycle at which camera pixels [x0, x0 + n) of line y have arrived.
+    uint64_t camera_ready_cycle(int width, int y, int x0, int n) const {
+        return board.camera_ready_cycle(clock_mhz, width, y, x0, n);
+    }
     // Modeled time of `cycles` at clock_mhz.
     double seconds(uint64_t cycles) const {
         return static_cast<double>(cycles) / (clock_mhz * 1e6);

@@ -78,6 +78,10 @@ class VideoPort {
     virtual bool write_row(int /*port*/, int /*y*/, int /*x0*/, uint32_t /*addr*/, int /*n*/) {
         return false;
     }
+    // Width in pixels of input image `port`, for the camera's line timing
+    // (MachineConfig::camera_ready_cycle); -1 = unknown (a timed camera
+    // then faults the vin).
+    virtual int input_width(int /*port*/) const { return -1; }
 };
 
 // A VideoPort over in-memory 8-bit images (tests and tools).
@@ -93,6 +97,9 @@ class ImageVideoPort : public VideoPort {
     void make_output(int port, int width, int height);
     void read_line(int port, int y, int x0, uint8_t* dst, int n) override;
     void write_line(int port, int y, int x0, const uint8_t* src, int n) override;
+    int input_width(int port) const override {
+        return port == 0 || port == 1 ? input[port].width : -1;
+    }
 };
 
 class Machine;

@@ -59,6 +59,11 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     // arrived (streamed input), in the current / last run. The machine's
     // cycle count does not include it [A: the CP stalls, the array idles].
     sc_core::sc_time video_stall() const { return stall_; }
+    // Width of input image `port` for a timed camera (camera_pixel_mhz):
+    // TlmSystem::set_input tells it.
+    void set_input_width(int port, int width) {
+        if (port == 0 || port == 1) in_width_[port] = width;
+    }
     uint64_t syncs() const { return syncs_; }    // quantum keeper synchronisations
     uint64_t chunks() const { return chunks_; }  // Machine::run calls
     bool used_dmi() const { return dmi_ptr_ != nullptr; }
@@ -84,6 +89,9 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     void write_line(int port, int y, int x0, const uint8_t* src, int n) override;
     bool read_row(int port, int y, int x0, uint32_t addr, int n) override;
     bool write_row(int port, int y, int x0, uint32_t addr, int n) override;
+    int input_width(int port) const override {
+        return port == 0 || port == 1 ? in_width_[port] : -1;
+    }
     // One line transaction on `video` (after synchronising time).
     void video_transfer(bool write, int port, int y, int x0, uint8_t* data, int n);
     void mem_row(bool write, uint32_t addr, uint8_t* data, int n);
@@ -95,6 +103,7 @@ class Cp : public sc_core::sc_module, private isa::VideoPort {
     QuantumKeeper qk_;
     uint64_t synced_cycles_ = 0;  // machine cycles at the last synchronisation
     std::vector<uint8_t> line_;   // the video line buffer
+    int in_width_[2] = {-1, -1};  // input image widths (set_input_width)
     uint8_t* dmi_ptr_ = nullptr;  // DMI of the local-memory block, or null
     uint64_t dmi_end_ = 0;
     ::tlm::tlm_generic_payload tr_;

@@ -63,7 +63,10 @@ class TlmSystem : private detail::ElaborationGuard, public sc_core::sc_module {
 
     // Host inputs, before sc_start.
     void set_param(int i, uint32_t v) { cp.machine().set_param(i, v); }
-    void set_input(int port, ImageInput img) { video.set_input(port, std::move(img)); }
+    void set_input(int port, ImageInput img) {
+        cp.set_input_width(port, img.width);
+        video.set_input(port, std::move(img));
+    }
     void make_output(int port, int width, int height) { video.make_output(port, width, height); }
     const ImageInput& input(int port) const { return video.input(port); }
     const ImageInput& output(int port) const { return video.output(port); }
