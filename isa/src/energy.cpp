@@ -2,6 +2,7 @@
 // (docs/energy.md).
 #include "imap/isa/energy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -207,6 +208,18 @@ EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg
     r.total_pj = r.dynamic_pj + r.static_pj;
     r.power_mw = r.seconds > 0 ? r.total_pj * 1e-9 / r.seconds : 0.0;
     return r;
+}
+
+std::vector<EnergyReport> energy_by_phase(const Stats& s, const std::vector<uint64_t>& phase_cycles,
+                                          const MachineConfig& cfg) {
+    const size_t n = std::max(s.by_phase.size(), phase_cycles.size());
+    std::vector<EnergyReport> out;
+    out.reserve(n);
+    const Stats none;
+    for (size_t i = 0; i < n; ++i)
+        out.push_back(energy_of(i < s.by_phase.size() ? s.by_phase[i] : none,
+                                i < phase_cycles.size() ? phase_cycles[i] : 0, cfg));
+    return out;
 }
 
 }  // namespace imap::isa

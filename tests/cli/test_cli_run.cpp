@@ -232,6 +232,35 @@ BOOST_AUTO_TEST_CASE(report_energy_is_events_times_energies) {
     fs::remove_all(d);
 }
 
+// Issue 29 item 3: the energy of each phase (the report's energy.phases, the
+// run's "energy by phase" lines) adds up to the frame's energy, every phase
+// that ran has one, and no other name appears.
+BOOST_AUTO_TEST_CASE(report_energy_by_phase_adds_up_to_the_frame) {
+    const fs::path d = tmpdir();
+    const std::string rep = (d / "p.json").string();
+    const Result r = run("run --model core --pes 16 --size 48x16 --D 8 --report " + rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("energy by phase") != std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(rep));
+    const nlohmann::json& ph = j.at("energy").at("phases");
+    BOOST_REQUIRE(ph.is_object());
+    BOOST_TEST(ph.size() >= 5u);
+    double sum = 0;
+    for (const auto& [name, uj] : ph.items()) {
+        BOOST_TEST_INFO(name);
+        BOOST_TEST(j.at("phases").contains(name));
+        BOOST_TEST(uj.get<double>() > 0.0);
+        sum += uj.get<double>();
+        // printed with its share
+        BOOST_TEST(r.out.find("    " + name + " ") != std::string::npos);
+    }
+    for (const auto& [name, cyc] : j.at("phases").items()) BOOST_TEST(ph.contains(name), name);
+    BOOST_TEST(sum == j.at("energy").at("total_uj").get<double>(),
+               boost::test_tools::tolerance(1e-9));
+    fs::remove_all(d);
+}
+
 BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
     const fs::path d = tmpdir();
     const char* configs[] = {
@@ -259,6 +288,7 @@ BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
             BOOST_TEST(rep[0].at("cycles") == rep[1].at("cycles"));
             BOOST_TEST(rep[0].at("phases") == rep[1].at("phases"));
             BOOST_TEST(rep[0].at("energy").at("events") == rep[1].at("energy").at("events"));
+            BOOST_TEST(rep[0].at("energy").at("phases") == rep[1].at("energy").at("phases"));
         }
     }
     fs::remove_all(d);
@@ -472,6 +502,8 @@ BOOST_AUTO_TEST_CASE(lockstep_and_rtl_reports_have_their_fields) {
     const nlohmann::json cj = nlohmann::json::parse(std::ifstream(core));
     BOOST_TEST(rj.at("energy").at("events") == cj.at("energy").at("events"));
     BOOST_TEST(j.at("energy").at("events") == cj.at("energy").at("events"));
+    BOOST_TEST(rj.at("energy").at("phases") == cj.at("energy").at("phases"));
+    BOOST_TEST(j.at("energy").at("phases") == cj.at("energy").at("phases"));
     BOOST_TEST(rj.at("energy").at("events_source").get<std::string>().find("instruction-set") ==
                0u);
     BOOST_TEST(j.at("energy").at("events_source") == "lockstep's TLM side");

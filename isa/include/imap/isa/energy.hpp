@@ -113,4 +113,11 @@ struct EnergyReport {
 // Energy of a run of `cycles` with statistics `s` on configuration `cfg`.
 EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg);
 
+// Energy of each phase of a run (index = phase id, as Stats::by_phase and
+// Machine::phase_cycles): the phase's counted events over its own cycles, so
+// that the phases add up to energy_of(s, sum of phase_cycles, cfg). Size:
+// the larger of s.by_phase and phase_cycles (a missing entry counts zero).
+std::vector<EnergyReport> energy_by_phase(const Stats& s, const std::vector<uint64_t>& phase_cycles,
+                                          const MachineConfig& cfg);
+
 }  // namespace imap::isa
