@@ -138,6 +138,9 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
         {"--set indirect=off", "indirect"},
         {"--set e_alu_pj=-1", "invalid value -1 for e_alu_pj: allowed 0..1e+06 pJ"},
         {"--set energy_scale=0", "energy_scale: allowed 0.001..10000"},
+        {"--set frame_rate_hz=0",
+         "invalid value 0 for frame_rate_hz: allowed 0..1e+06 Hz, exclusive of 0"},
+        {"--set frame_rate_hz=2e6", "frame_rate_hz: allowed 0..1e+06 Hz, exclusive of 0"},
         {"--set s_pe_leak_uw=abc", "invalid value 'abc' for s_pe_leak_uw: expected a number"},
         {"--model nosuch", "--model"},
     };
@@ -258,6 +261,46 @@ BOOST_AUTO_TEST_CASE(report_energy_by_phase_adds_up_to_the_frame) {
     for (const auto& [name, cyc] : j.at("phases").items()) BOOST_TEST(ph.contains(name), name);
     BOOST_TEST(sum == j.at("energy").at("total_uj").get<double>(),
                boost::test_tools::tolerance(1e-9));
+    fs::remove_all(d);
+}
+
+// Issue 29 item 3: power at the camera rate (--set frame_rate_hz), from the
+// report's own energy, static energy and time; a frame slower than the
+// camera's period says it cannot keep up and reports the frame-time power.
+BOOST_AUTO_TEST_CASE(report_power_at_the_camera_rate) {
+    const fs::path d = tmpdir();
+    const std::string rep = (d / "c.json").string(), slow = (d / "s.json").string();
+    const Result r =
+        run("run --model core --pes 16 --size 48x16 --D 8 --set frame_rate_hz=25 "
+            "--report " +
+            rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(rep));
+    const nlohmann::json& e = j.at("energy");
+    const double ms = j.at("modeled_ms").get<double>(), period_ms = 1000.0 / 25;
+    BOOST_REQUIRE(ms < period_ms);
+    const double total = e.at("total_uj").get<double>(), stat = e.at("static_uj").get<double>();
+    // uJ / ms = mW
+    const double want = (total + stat / ms * (period_ms - ms)) / period_ms;
+    BOOST_TEST(e.at("frame_rate_hz").get<double>() == 25.0);
+    BOOST_TEST(e.at("power_camera_mw").get<double>() == want, boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(e.at("camera_keeps_up").get<bool>());
+    BOOST_TEST(r.out.find("power at the camera rate: ") != std::string::npos);
+    BOOST_TEST(r.out.find(" at 25 fps (every 40.000 ms") != std::string::npos);
+    // A rate whose period (ms / 2) the frame cannot meet.
+    const std::string rate = std::to_string(static_cast<int>(2000.0 / ms));
+    const Result s =
+        run("run --model core --pes 16 --size 48x16 --D 8 --set frame_rate_hz=" + rate +
+            " --report " + slow);
+    BOOST_TEST_INFO(s.out);
+    BOOST_REQUIRE(s.code == 0);
+    const nlohmann::json k = nlohmann::json::parse(std::ifstream(slow));
+    BOOST_TEST(!k.at("energy").at("camera_keeps_up").get<bool>());
+    BOOST_TEST(k.at("energy").at("power_camera_mw").get<double>() ==
+               k.at("energy").at("power_mw").get<double>());
+    BOOST_TEST(s.out.find("> the camera period") != std::string::npos);
+    BOOST_TEST(s.out.find("cannot keep up") != std::string::npos);
     fs::remove_all(d);
 }
 

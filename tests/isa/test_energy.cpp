@@ -296,6 +296,37 @@ BOOST_AUTO_TEST_CASE(static_energy_scales_with_cycles_times_pes) {
                boost::test_tools::tolerance(1e-12));
 }
 
+// Issue 29 item 3: the average power at the camera's rate, worked out here
+// from the report's energy, static energy and time: the frame, then idle at
+// the static power until the next frame; a frame slower than the camera's
+// period cannot keep up and reports the frame-time power.
+BOOST_AUTO_TEST_CASE(power_at_the_camera_rate) {
+    MachineConfig cfg = small(4);
+    cfg.energy.frame_rate_hz = 25;
+    auto m = run(kMasked, cfg);
+    const EnergyReport r = energy_of(m->stats(), m->cycles(), cfg);
+    const double sec = static_cast<double>(m->cycles()) / 40e6;
+    const double static_w = r.static_pj * 1e-12 / sec;
+    const double want_w = (r.total_pj * 1e-12 + static_w * (1.0 / 25 - sec)) * 25;
+    const auto tol = boost::test_tools::tolerance(1e-12);
+    BOOST_TEST(r.keeps_up);
+    BOOST_TEST(r.frame_rate_hz == 25.0);
+    BOOST_TEST(r.period_s == 0.04, tol);
+    BOOST_TEST(r.static_mw == static_w * 1e3, tol);
+    BOOST_TEST(r.power_camera_mw == want_w * 1e3, tol);
+    BOOST_TEST(r.power_camera_mw < r.power_mw);  // idle is cheaper than running
+    // 1 MHz and a 1 us camera period: the frame's cycles take longer
+    cfg.clock_mhz = 1;
+    cfg.energy.frame_rate_hz = 1e6;
+    const EnergyReport slow = energy_of(m->stats(), m->cycles(), cfg);
+    BOOST_REQUIRE(m->cycles() > 1u);
+    BOOST_TEST(!slow.keeps_up);
+    BOOST_TEST(slow.power_camera_mw == slow.power_mw);
+    // the rate only changes the camera-rate figure
+    cfg.energy.frame_rate_hz = 30;
+    BOOST_TEST(energy_of(m->stats(), m->cycles(), cfg).total_pj == slow.total_pj);
+}
+
 BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
     for (const EnergyTable::Field& f : EnergyTable::fields()) {
         BOOST_TEST_INFO(f.name);
@@ -314,6 +345,7 @@ BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
                 BOOST_TEST(w.find("allowed ") != std::string::npos, w);
             }
         }
+        if (f.min_exclusive) BOOST_CHECK_THROW(c.set(f.name, "0"), ConfigError);
         BOOST_CHECK_THROW(c.set(f.name, "abc"), ConfigError);
         BOOST_CHECK_THROW(c.set(f.name, "nan"), ConfigError);
         c.energy.*f.ptr = f.max * 2;

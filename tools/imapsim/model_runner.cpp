@@ -581,6 +581,9 @@ nlohmann::json energy_json(const isa::EnergyReport& e, const std::string& source
             {"dynamic_uj", e.dynamic_pj * 1e-6},
             {"static_uj", e.static_pj * 1e-6},
             {"power_mw", e.power_mw},
+            {"frame_rate_hz", e.frame_rate_hz},
+            {"power_camera_mw", e.power_camera_mw},
+            {"camera_keeps_up", e.keeps_up},
             {"by_class", by},
             {"events", ev},
             {"events_source", source},
@@ -596,6 +599,16 @@ void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
         e.total_pj * 1e-6, e.dynamic_pj * 1e-6, e.static_pj * 1e-6, e.power_mw, e.seconds * 1e3,
         cfg.energy.energy_scale,
         source == "isa" ? "" : "; events: ", source == "isa" ? "" : source.c_str());
+    if (e.keeps_up)
+        std::printf(
+            "  power at the camera rate: %.3f mW at %g fps (every %.3f ms: the frame's %.3f ms, "
+            "then idle at the static %.3f mW; frame_rate_hz)\n",
+            e.power_camera_mw, e.frame_rate_hz, e.period_s * 1e3, e.seconds * 1e3, e.static_mw);
+    else
+        std::printf(
+            "  power at the camera rate: the frame takes %.3f ms > the camera period %.3f ms "
+            "(%g fps): cannot keep up; %.3f mW, the frame-time power (frame_rate_hz)\n",
+            e.seconds * 1e3, e.period_s * 1e3, e.frame_rate_hz, e.power_camera_mw);
     std::vector<std::pair<double, int>> order;
     for (int i = 0; i < isa::kEnergyClassCount; ++i)
         if (e.by_class_pj[size_t(i)] > 0) order.emplace_back(e.by_class_pj[size_t(i)], i);
