@@ -460,8 +460,8 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_REQUIRE_EQUAL(r.code, 0);
     const Csv c = parse_csv(slurp(csv));
     BOOST_REQUIRE(!c.empty());
-    BOOST_TEST(
-        (c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles", "dominant_phase"}));
+    BOOST_TEST((c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles",
+                                                 "dominant_phase", "energy_uj"}));
     // The paper's grid: widths 32/64/128, D 16/32/64/128 with D <= width.
     std::set<std::pair<int, int>> want;
     for (int w : {32, 64, 128})
@@ -470,14 +470,16 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_REQUIRE_EQUAL(want.size(), 9u);
     std::set<std::pair<int, int>> got;
     uint64_t headline = 0;
+    double headline_uj = 0;
     for (size_t i = 1; i < c.size(); ++i) {
-        BOOST_REQUIRE_EQUAL(c[i].size(), 5u);
+        BOOST_REQUIRE_EQUAL(c[i].size(), 6u);
         BOOST_TEST(!c[i][4].empty());
+        BOOST_TEST(std::stod(c[i][5]) > 0.0);
         const int w = std::stoi(c[i][0]), dd = std::stoi(c[i][1]);
         got.insert({w, dd});
         const uint64_t cyc = std::stoull(c[i][3]);
         BOOST_TEST(std::stod(c[i][2]) == cyc / 40e3, boost::test_tools::tolerance(1e-6));
-        if (w == 128 && dd == 64) headline = cyc;
+        if (w == 128 && dd == 64) headline = cyc, headline_uj = std::stod(c[i][5]);
     }
     BOOST_TEST(c.size() == 10u);
     BOOST_TEST((got == want));
@@ -485,6 +487,13 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_TEST(headline ==
                direct_cycles("--size 128x128 --roi 0,0,128,128 --D 64 --pes 256 --clock-mhz 40",
                              d / "headline.json"));
+    // ... and its energy per frame is the one that run reports for it
+    // (issue 29 item 3), beside the time in the table's second grid.
+    const json hj = json::parse(slurp(d / "headline.json"));
+    BOOST_TEST(headline_uj == hj.at("energy").at("total_uj").get<double>(),
+               boost::test_tools::tolerance(1e-6));
+    BOOST_TEST(r.out.find("Energy per frame (uJ) of the same cells") != std::string::npos);
+    BOOST_TEST(r.out.find("energy uJ") != std::string::npos);
     // The stdout table shows the paper's 85 ms beside the headline cell.
     std::istringstream lines(r.out);
     std::string line;
