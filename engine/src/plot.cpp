@@ -162,6 +162,7 @@ std::string script_text(const Figure& f, const std::string& data_name,
     const bool labelled = std::any_of(f.series.begin(), f.series.end(),
                                       [](const Series& s) { return !s.label.empty(); });
     o << (!labelled             ? "unset key\n"
+          : !f.key.empty()      ? "set key " + f.key + "\n"
           : f.series.size() > 5 ? "set key outside right top vertical\n"
                                 : "set key top right box opaque samplen 2 width 1 height 0.5\n");
     int tag = 1;

@@ -1506,6 +1506,7 @@ bool make_pareto_figure(const Plan& p, const Result& r, plot::Figure* f) {
     f->series.push_back(line);
     f->logx = xmin > 0 && xmax / xmin > 20;
     f->logy = ymin > 0 && ymax / ymin > 20;
+    f->key = "below horizontal";  // points can be anywhere in the plot area
     std::string note =
         sized ? "point size: area (yosys cells), largest " + fmt("%.2f", amax / 1e6) + " Mcells"
               : "no area in the results (no yosys in the run's build): points "

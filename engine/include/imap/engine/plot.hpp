@@ -48,6 +48,7 @@ struct Figure {
     std::vector<HLine> hlines;  // drawn dashed, included in the y range
     std::vector<Annotation> annotations;
     std::string note;  // top-left corner of the plot area
+    std::string key;   // gnuplot `set key` placement ("below", ...); empty: automatic
     int width = 900, height = 600;
 };
 
