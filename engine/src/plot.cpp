@@ -62,8 +62,10 @@ std::string data_text(const Figure& f) {
         const Series& s = f.series[i];
         if (i) o << "\n\n";
         o << "# index " << i << ": " << (s.label.empty() ? "(no label)" : s.label) << "\n";
+        const bool sized = s.size.size() == s.x.size();
         for (size_t k = 0; k < s.x.size() && k < s.y.size(); ++k)
-            o << num(s.x[k]) << " " << num(s.y[k]) << "\n";
+            o << num(s.x[k]) << " " << num(s.y[k]) << (sized ? " " + num(s.size[k]) : std::string())
+              << "\n";
     }
     return o.str();
 }
@@ -160,6 +162,7 @@ std::string script_text(const Figure& f, const std::string& data_name,
     const bool labelled = std::any_of(f.series.begin(), f.series.end(),
                                       [](const Series& s) { return !s.label.empty(); });
     o << (!labelled             ? "unset key\n"
+          : !f.key.empty()      ? "set key " + f.key + "\n"
           : f.series.size() > 5 ? "set key outside right top vertical\n"
                                 : "set key top right box opaque samplen 2 width 1 height 0.5\n");
     int tag = 1;
@@ -183,8 +186,12 @@ std::string script_text(const Figure& f, const std::string& data_name,
     o << "plot ";
     for (size_t i = 0; i < f.series.size(); ++i) {
         const Series& s = f.series[i];
-        o << (i ? ", \\\n     " : "") << "datafile index " << i << " using 1:2 with ";
-        if (s.bound_of >= 0)
+        const bool sized = s.scatter && !s.size.empty() && s.size.size() == s.x.size();
+        o << (i ? ", \\\n     " : "") << "datafile index " << i << " using 1:2"
+          << (sized ? ":3" : "") << " with ";
+        if (s.scatter)
+            o << "points pt 7 lt " << i + 1 << (sized ? " ps variable " : " ps 1.5 ");
+        else if (s.bound_of >= 0)
             o << "lines lw 1.5 dt 2 lt " << s.bound_of + 1 << " ";
         else
             o << "linespoints lw 2 lt " << i + 1 << " pt "

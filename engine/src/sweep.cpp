@@ -578,6 +578,90 @@ std::string dominant_text(const RunResult& r) {
 
 }  // namespace
 
+const char* metric_name(Metric m) {
+    switch (m) {
+        case Metric::Time:
+            return "time";
+        case Metric::Energy:
+            return "energy";
+        case Metric::Power:
+            return "power";
+        case Metric::Edp:
+            return "edp";
+        case Metric::Area:
+            return "area";
+    }
+    return "?";
+}
+
+std::optional<Metric> metric_from_name(const std::string& s) {
+    for (Metric m : {Metric::Time, Metric::Energy, Metric::Power, Metric::Edp, Metric::Area})
+        if (s == metric_name(m)) return m;
+    return std::nullopt;
+}
+
+double metric_value(const Row& r, Metric m) {
+    if (!r.ran()) return NAN;
+    const RunResult& x = *r.run;
+    switch (m) {
+        case Metric::Time:
+            return x.modeled_ms;
+        case Metric::Energy:
+            return x.energy ? x.energy->total_uj : NAN;
+        case Metric::Power:
+            return x.energy ? x.energy->power_mw : NAN;
+        case Metric::Edp:
+            return x.energy ? x.energy->total_uj * x.modeled_ms : NAN;
+        case Metric::Area:
+            return x.area ? static_cast<double>(x.area->cells) : NAN;
+    }
+    return NAN;
+}
+
+namespace {
+
+// The column --y adds to the table (energy, power, edp; time and area have
+// theirs already): its heading and the value's text.
+const char* metric_column(Metric m) {
+    switch (m) {
+        case Metric::Energy:
+            return "energy uJ";
+        case Metric::Power:
+            return "power mW";
+        case Metric::Edp:
+            return "EDP uJ*ms";
+        default:
+            return nullptr;
+    }
+}
+
+std::string metric_text(Metric m, double v) {
+    if (std::isnan(v)) return "-";
+    switch (m) {
+        case Metric::Time:
+            return fmt("%.3f ms", v);
+        case Metric::Energy:
+            return fmt("%.3f uJ", v);
+        case Metric::Power:
+            return fmt("%.3f mW", v);
+        case Metric::Edp:
+            return fmt("%.3f uJ*ms", v);
+        case Metric::Area:
+            return fmt("%.2f Mcells", v / 1e6);
+    }
+    return "-";
+}
+
+// "pes=256, D=64": a row's swept values (the whole point when nothing is swept).
+std::string point_text(const Plan& p, const Row& r) {
+    std::string t;
+    for (size_t i = 0; i < p.swept.size() && i < r.values.size(); ++i)
+        t += (t.empty() ? "" : ", ") + p.swept[i].name + "=" + r.values[i];
+    return t.empty() ? std::string("the point") : t;
+}
+
+}  // namespace
+
 std::vector<std::string> header_lines(const Plan& p, const Executor* ex) {
     std::vector<std::string> out;
     std::string sizes;
@@ -600,8 +684,14 @@ std::vector<std::string> header_lines(const Plan& p, const Executor* ex) {
         std::snprintf(b, sizeof b, "%*s  ", static_cast<int>(w[i]), p.swept[i].name.c_str());
         h += b;
     }
-    std::snprintf(b, sizeof b, "%10s %10s %8s %5s %8s %8s  %-17s %7s  %s", "cycles", "modeled ms",
-                  "fps", "eff", "local B", "Mcells", "dominant phase", "wall s", "result");
+    std::snprintf(b, sizeof b, "%10s %10s ", "cycles", "modeled ms");
+    h += b;
+    if (const char* col = metric_column(p.y)) {
+        std::snprintf(b, sizeof b, "%10s ", col);
+        h += b;
+    }
+    std::snprintf(b, sizeof b, "%8s %5s %8s %8s  %-17s %7s  %s", "fps", "eff", "local B", "Mcells",
+                  "dominant phase", "wall s", "result");
     out.push_back(h + b);
     return out;
 }
@@ -639,11 +729,16 @@ std::string row_line(const Plan& p, const Row& r) {
             break;
     }
     const bool ran = r.ran();
+    std::snprintf(b, sizeof b, "%10s %10s ", ran ? std::to_string(r.run->cycles).c_str() : "-",
+                  ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-");
+    l += b;
+    if (metric_column(p.y)) {
+        const double v = metric_value(r, p.y);
+        std::snprintf(b, sizeof b, "%10s ", std::isnan(v) ? "-" : fmt("%.3f", v).c_str());
+        l += b;
+    }
     std::snprintf(
-        b, sizeof b, "%10s %10s %8s %5s %8s %8s  %-17s %7s  ",
-        ran ? std::to_string(r.run->cycles).c_str() : "-",
-        ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-",
-        ran ? fmt("%.2f", r.fps()).c_str() : "-",
+        b, sizeof b, "%8s %5s %8s %8s  %-17s %7s  ", ran ? fmt("%.2f", r.fps()).c_str() : "-",
         ran && r.run->bound_cycles > 0 ? fmt("%.0f%%", 100.0 * r.run->efficiency()).c_str() : "-",
         r.local_bytes >= 0 ? std::to_string(r.local_bytes).c_str() : "-",
         ran && r.run->area ? fmt("%.2f", r.run->area->cells / 1e6).c_str() : "-",
@@ -780,6 +875,23 @@ std::vector<std::string> summary_lines(const Plan& p, const Result& r) {
                                 "cannot run)");
     }
     for (const Knee& k : r.knees) out.push_back("  " + k.explanation);
+    // --y other than time: the point with the least of it.
+    if (p.y != Metric::Time) {
+        const Row* best = nullptr;
+        for (const Row& row : r.rows) {
+            const double v = metric_value(row, p.y);
+            if (row.status == Status::Ok && !std::isnan(v) &&
+                (!best || v < metric_value(*best, p.y)))
+                best = &row;
+        }
+        if (best)
+            out.push_back("  least " + std::string(metric_name(p.y)) + ": " + point_text(p, *best) +
+                          ", " + metric_text(p.y, metric_value(*best, p.y)) + " (" +
+                          metric_text(Metric::Time, best->run->modeled_ms) + ")");
+        else
+            out.push_back("  least " + std::string(metric_name(p.y)) +
+                          ": no bit-exact point reports it");
+    }
     return out;
 }
 
@@ -996,6 +1108,7 @@ std::string to_csv(const Plan& p, const Result& r) {
     // (docs/energy.md), after every other column so that their positions stay.
     head.push_back("energy_uj");
     head.push_back("power_mw");
+    head.push_back("edp");  // energy x delay, uJ x ms
     auto emit = [&](const std::vector<std::string>& cells) {
         for (size_t i = 0; i < cells.size(); ++i) o << (i ? "," : "") << csv_field(cells[i]);
         o << "\n";
@@ -1029,6 +1142,7 @@ std::string to_csv(const Plan& p, const Result& r) {
         const bool en = ran && row.run->energy.has_value();
         c.push_back(en ? fmt("%.6f", row.run->energy->total_uj) : "");
         c.push_back(en ? fmt("%.6f", row.run->energy->power_mw) : "");
+        c.push_back(en ? fmt("%.6f", metric_value(row, Metric::Edp)) : "");
         emit(c);
     }
     if (r.interrupted) {
@@ -1106,7 +1220,10 @@ json to_json(const Plan& p, const Result& r) {
                 o["bound_cycles"] = rr.bound_cycles;
                 o["efficiency"] = rr.efficiency();
             }
-            if (rr.energy) o["energy"] = energy_json(*rr.energy);
+            if (rr.energy) {
+                o["energy"] = energy_json(*rr.energy);
+                o["edp"] = metric_value(row, Metric::Edp);
+            }
         }
         if (row.run && row.run->wall_s > 0) o["wall_s"] = row.run->wall_s;
         if (row.local_bytes >= 0) o["local_bytes_per_pe"] = row.local_bytes;
@@ -1135,6 +1252,22 @@ std::string axis_label(const Axis& a) {
             if (pi.name == a.name && !pi.unit.empty()) return a.name + " (" + pi.unit + ")";
     }
     return a.name;
+}
+
+// The input and the fixed parameters, for a plot's subtitle.
+std::string figure_subtitle(const Plan& p) {
+    std::string sub;
+    for (const Axis& a : p.fixed) sub += (sub.empty() ? "" : ", ") + a.name + "=" + a.values[0];
+    if (p.synthetic &&
+        std::none_of(p.fixed.begin(), p.fixed.end(),
+                     [](const Axis& a) { return a.name == "roi_size"; }) &&
+        std::none_of(p.swept.begin(), p.swept.end(),
+                     [](const Axis& a) { return a.name == "roi_size"; }))
+        sub += (sub.empty() ? "" : ", ") + std::string("roi_size=128x128");
+    sub =
+        (p.synthetic ? std::string("synthetic scene") : p.input) + (sub.empty() ? "" : "; " + sub);
+    if (sub.size() > 120) sub = sub.substr(0, 117) + "...";
+    return sub;
 }
 
 }  // namespace
@@ -1183,12 +1316,19 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
     // Series.
     std::map<std::string, size_t> series_index;
     std::map<size_t, std::vector<double>> bound_x, bound_y;  // per achieved series
-    size_t not_fit = 0, failed = 0;
+    size_t not_fit = 0, failed = 0, no_value = 0;
+    const Metric m = p.y;
+    const bool time = m == Metric::Time;
     double ymin = INFINITY, ymax = 0;
     for (const Row& row : r.rows) {
         if (row.status != Status::Ok) {
             (row.status == Status::DoesNotFit || row.status == Status::CannotRun ? not_fit
                                                                                  : failed)++;
+            continue;
+        }
+        const double yv = metric_value(row, m);
+        if (std::isnan(yv)) {
+            ++no_value;
             continue;
         }
         const std::string label = series_label(p, row, xi);
@@ -1200,11 +1340,11 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
         const size_t vi = static_cast<size_t>(
             std::find(ax.values.begin(), ax.values.end(), row.values[xi]) - ax.values.begin());
         f->series[it->second].x.push_back(xv[vi]);
-        f->series[it->second].y.push_back(row.run->modeled_ms);
-        ymin = std::min(ymin, row.run->modeled_ms);
-        ymax = std::max(ymax, row.run->modeled_ms);
+        f->series[it->second].y.push_back(yv);
+        ymin = std::min(ymin, yv);
+        ymax = std::max(ymax, yv);
         // The machine's bound at this point (same clock, so the same ms per cycle).
-        if (row.run->bound_cycles > 0) {
+        if (time && row.run->bound_cycles > 0) {
             const double ms = row.run->modeled_ms * row.run->efficiency();
             bound_x[it->second].push_back(xv[vi]);
             bound_y[it->second].push_back(ms);
@@ -1221,8 +1361,12 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
         f->series.push_back({(l.empty() ? std::string() : l + ": ") + "machine bound", bound_x[i],
                              bound_y[i], static_cast<int>(i)});
     }
-    f->hlines = {{100.0, "real time, 10 fps (100 ms)"}, {40.0, "video rate, 25 fps (40 ms)"}};
-    f->logy = ymin > 0 && std::max(ymax, 100.0) / std::min(ymin, 40.0) > 20;
+    if (time) {
+        f->hlines = {{100.0, "real time, 10 fps (100 ms)"}, {40.0, "video rate, 25 fps (40 ms)"}};
+        f->logy = ymin > 0 && std::max(ymax, 100.0) / std::min(ymin, 40.0) > 20;
+    } else {
+        f->logy = ymin > 0 && ymax / ymin > 20;
+    }
     std::string note;
     if (not_fit)
         note = std::to_string(not_fit) + " point" + (not_fit == 1 ? "" : "s") + " that do" +
@@ -1230,12 +1374,17 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
     if (failed)
         note += (note.empty() ? "" : "; ") + std::to_string(failed) + " failed point" +
                 (failed == 1 ? "" : "s") + " not shown";
+    if (no_value)
+        note += (note.empty() ? "" : "; ") + std::to_string(no_value) + " point" +
+                (no_value == 1 ? "" : "s") + " without " +
+                (m == Metric::Area ? "an area (no yosys in the run's build)" : "an energy") +
+                " not shown";
     if (r.interrupted)
         note += (note.empty() ? "" : "; ") + std::string("interrupted: ") +
                 std::to_string(r.not_run) + " points not run";
     f->note = note;
     for (const Knee& k : r.knees) {
-        if (r.x_axis != ax.name) continue;
+        if (!time || r.x_axis != ax.name) continue;
         double x = k.xv;
         if (ax.kind == AxisKind::RoiSize) {
             const size_t vi = static_cast<size_t>(
@@ -1244,21 +1393,134 @@ bool make_figure(const Plan& p, const Result& r, size_t xi, plot::Figure* f) {
         }
         f->annotations.push_back({x, k.y_ms, k.label});
     }
-    f->title = "Modeled frame time vs " + f->xlabel.substr(0, f->xlabel.find(',')) + " (imapsim " +
+    static const std::map<Metric, std::pair<const char*, const char*>> kY = {
+        {Metric::Time, {"Modeled frame time", "modeled frame time (ms)"}},
+        {Metric::Energy, {"Energy per frame", "energy per frame (uJ; [A] energy model)"}},
+        {Metric::Power, {"Average power", "average power over the frame (mW; [A] energy model)"}},
+        {Metric::Edp, {"Energy x delay", "energy x delay per frame (uJ x ms)"}},
+        {Metric::Area, {"Area", "area (yosys generic cells)"}}};
+    f->title = std::string(kY.at(m).first) + " vs " + f->xlabel.substr(0, f->xlabel.find(',')) +
+               " (imapsim " + p.command + ", model " + p.model + ")";
+    f->subtitle = figure_subtitle(p);
+    f->ylabel = kY.at(m).second;
+    return true;
+}
+
+// ---- Pareto view: time against energy -------------------------------------------------
+
+namespace {
+// A row that counts as a design point of the Pareto view.
+bool pareto_candidate(const Row& r) {
+    return r.status == Status::Ok && r.ran() && r.run->energy.has_value();
+}
+}  // namespace
+
+std::vector<size_t> pareto_rows(const std::vector<Row>& rows) {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < rows.size(); ++i) {
+        if (!pareto_candidate(rows[i])) continue;
+        const double ti = rows[i].run->modeled_ms, ei = rows[i].run->energy->total_uj;
+        bool dominated = false;
+        for (size_t j = 0; j < rows.size() && !dominated; ++j) {
+            if (j == i || !pareto_candidate(rows[j])) continue;
+            const double tj = rows[j].run->modeled_ms, ej = rows[j].run->energy->total_uj;
+            dominated = tj <= ti && ej <= ei && (tj < ti || ej < ei);
+        }
+        if (!dominated) out.push_back(i);
+    }
+    return out;
+}
+
+std::vector<std::string> pareto_lines(const Plan& p, const Result& r) {
+    std::vector<std::string> out;
+    size_t n = 0;
+    for (const Row& row : r.rows) n += pareto_candidate(row);
+    if (n == 0) {
+        out.push_back("  Pareto (time, energy): no point ran bit-exact with an energy");
+        return out;
+    }
+    std::vector<size_t> front = pareto_rows(r.rows);
+    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) {
+        return r.rows[a].run->modeled_ms < r.rows[b].run->modeled_ms;
+    });
+    out.push_back(
+        "  Pareto-optimal (no other point both at most as slow and at most as much "
+        "energy): " +
+        std::to_string(front.size()) + " of " + std::to_string(n) + " point" + (n == 1 ? "" : "s") +
+        ", fastest first");
+    for (size_t i : front) {
+        const Row& row = r.rows[i];
+        std::string l = "    " + point_text(p, row) + ": " +
+                        metric_text(Metric::Time, row.run->modeled_ms) + ", " +
+                        metric_text(Metric::Energy, row.run->energy->total_uj) + ", " +
+                        metric_text(Metric::Power, row.run->energy->power_mw);
+        if (row.run->area) l += ", " + metric_text(Metric::Area, metric_value(row, Metric::Area));
+        out.push_back(l);
+    }
+    return out;
+}
+
+bool make_pareto_figure(const Plan& p, const Result& r, plot::Figure* f) {
+    std::vector<size_t> pts;
+    for (size_t i = 0; i < r.rows.size(); ++i)
+        if (pareto_candidate(r.rows[i])) pts.push_back(i);
+    if (pts.empty()) return false;
+    const bool sized = std::all_of(pts.begin(), pts.end(), [&](size_t i) {
+        return r.rows[i].run->area && r.rows[i].run->area->cells > 0;
+    });
+    double amax = 0, xmin = INFINITY, xmax = 0, ymin = INFINITY, ymax = 0;
+    for (size_t i : pts) {
+        const RunResult& x = *r.rows[i].run;
+        if (sized) amax = std::max(amax, static_cast<double>(x.area->cells));
+        xmin = std::min(xmin, x.modeled_ms);
+        xmax = std::max(xmax, x.modeled_ms);
+        ymin = std::min(ymin, x.energy->total_uj);
+        ymax = std::max(ymax, x.energy->total_uj);
+    }
+    plot::Series all;
+    all.label = sized ? "design points (size: area)" : "design points";
+    all.scatter = true;
+    for (size_t i : pts) {
+        const RunResult& x = *r.rows[i].run;
+        all.x.push_back(x.modeled_ms);
+        all.y.push_back(x.energy->total_uj);
+        // point size 1..4, its area proportional to the cells
+        if (sized) all.size.push_back(1.0 + 3.0 * std::sqrt(x.area->cells / amax));
+    }
+    f->series.push_back(all);
+    std::vector<size_t> front = pareto_rows(r.rows);
+    std::sort(front.begin(), front.end(), [&](size_t a, size_t b) {
+        return r.rows[a].run->modeled_ms < r.rows[b].run->modeled_ms;
+    });
+    plot::Series line;
+    line.label =
+        "Pareto front (" + std::to_string(front.size()) + " of " + std::to_string(pts.size()) + ")";
+    line.bound_of = 0;  // dashed, in the points' colour, without markers
+    for (size_t i : front) {
+        const Row& row = r.rows[i];
+        line.x.push_back(row.run->modeled_ms);
+        line.y.push_back(row.run->energy->total_uj);
+        f->annotations.push_back({row.run->modeled_ms, row.run->energy->total_uj,
+                                  p.swept.empty() ? std::string() : point_text(p, row)});
+    }
+    f->series.push_back(line);
+    f->logx = xmin > 0 && xmax / xmin > 20;
+    f->logy = ymin > 0 && ymax / ymin > 20;
+    f->key = "below horizontal";  // points can be anywhere in the plot area
+    std::string note =
+        sized ? "point size: area (yosys cells), largest " + fmt("%.2f", amax / 1e6) + " Mcells"
+              : "no area in the results (no yosys in the run's build): points "
+                "the same size";
+    const size_t left_out = r.rows.size() - pts.size();
+    if (left_out)
+        note += "; " + std::to_string(left_out) + " point" + (left_out == 1 ? "" : "s") +
+                " not run bit-exact with an energy not shown";
+    f->title = "Energy per frame vs modeled frame time, Pareto-optimal points circled (imapsim " +
                p.command + ", model " + p.model + ")";
-    std::string sub;
-    for (const Axis& a : p.fixed) sub += (sub.empty() ? "" : ", ") + a.name + "=" + a.values[0];
-    if (p.synthetic &&
-        std::none_of(p.fixed.begin(), p.fixed.end(),
-                     [](const Axis& a) { return a.name == "roi_size"; }) &&
-        std::none_of(p.swept.begin(), p.swept.end(),
-                     [](const Axis& a) { return a.name == "roi_size"; }))
-        sub += (sub.empty() ? "" : ", ") + std::string("roi_size=128x128");
-    sub =
-        (p.synthetic ? std::string("synthetic scene") : p.input) + (sub.empty() ? "" : "; " + sub);
-    if (sub.size() > 120) sub = sub.substr(0, 117) + "...";
-    f->subtitle = sub;
-    f->ylabel = "modeled frame time (ms)";
+    // under the title: the bottom-left corner is where the Pareto points lie
+    f->subtitle = figure_subtitle(p) + "\n" + note;
+    f->xlabel = "modeled frame time (ms)";
+    f->ylabel = "energy per frame (uJ; [A] energy model)";
     return true;
 }
 

@@ -2,6 +2,7 @@
 // (docs/energy.md).
 #include "imap/isa/energy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,6 +22,16 @@ std::string num(double v) {
 
 std::string range_of(const EnergyTable::Field& f) {
     return num(f.min) + ".." + num(f.max);
+}
+
+bool in_range(const EnergyTable::Field& f, double v) {
+    return std::isfinite(v) && v <= f.max && (f.min_exclusive ? v > f.min : v >= f.min);
+}
+
+// "allowed 0..1e+06 Hz, exclusive of 0"
+std::string allowed(const EnergyTable::Field& f) {
+    return "allowed " + range_of(f) + (*f.unit ? " " : "") + f.unit +
+           (f.min_exclusive ? ", exclusive of " + num(f.min) : "");
 }
 
 }  // namespace
@@ -64,6 +75,10 @@ const std::vector<EnergyTable::Field>& EnergyTable::fields() {
          "leakage of the CP (not scaled by energy_scale)"},
         {"energy_scale", &T::energy_scale, 0.001, 10000, "x",
          "technology factor on every on-chip pJ figure (1 = the 45 nm table; docs/energy.md 4)"},
+        {"frame_rate_hz", &T::frame_rate_hz, 0, 1e6, "Hz",
+         "the camera's frame rate: average power at the camera rate (the frame, then idle at "
+         "the static power until the next; docs/energy.md 1)",
+         true},
     };
     return f;
 }
@@ -77,9 +92,9 @@ bool EnergyTable::has(std::string_view name) {
 void EnergyTable::set(std::string_view name, double value) {
     for (const Field& f : fields()) {
         if (name != f.name) continue;
-        if (!std::isfinite(value) || value < f.min || value > f.max)
-            throw ConfigError("invalid value " + num(value) + " for " + std::string(name) +
-                              ": allowed " + range_of(f) + (*f.unit ? " " : "") + f.unit);
+        if (!in_range(f, value))
+            throw ConfigError("invalid value " + num(value) + " for " + std::string(name) + ": " +
+                              allowed(f));
         this->*f.ptr = value;
         return;
     }
@@ -98,17 +113,17 @@ double EnergyTable::get(std::string_view name) const {
 void EnergyTable::validate() const {
     for (const Field& f : fields()) {
         const double v = this->*f.ptr;
-        if (!std::isfinite(v) || v < f.min || v > f.max)
-            throw ConfigError("invalid value " + num(v) + " for " + f.name + ": allowed " +
-                              range_of(f) + (*f.unit ? " " : "") + f.unit);
+        if (!in_range(f, v))
+            throw ConfigError("invalid value " + num(v) + " for " + f.name + ": " + allowed(f));
     }
 }
 
 std::vector<ParamInfo> EnergyTable::list() const {
     std::vector<ParamInfo> out;
     for (const Field& f : fields())
-        out.push_back(
-            {f.name, num(this->*f.ptr), range_of(f), f.unit, "energy", f.doc, true, false});
+        out.push_back({f.name, num(this->*f.ptr),
+                       range_of(f) + (f.min_exclusive ? " (exclusive of " + num(f.min) + ")" : ""),
+                       f.unit, "energy", f.doc, true, false});
     return out;
 }
 
@@ -206,7 +221,27 @@ EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg
         (i >= static_cast<int>(EnergyClass::StaticPe) ? r.static_pj : r.dynamic_pj) += c[size_t(i)];
     r.total_pj = r.dynamic_pj + r.static_pj;
     r.power_mw = r.seconds > 0 ? r.total_pj * 1e-9 / r.seconds : 0.0;
+    // pJ / s = 1e-9 mW
+    r.frame_rate_hz = t.frame_rate_hz;
+    r.period_s = 1.0 / t.frame_rate_hz;
+    r.static_mw = r.seconds > 0 ? r.static_pj * 1e-9 / r.seconds : 0.0;
+    r.keeps_up = r.seconds <= r.period_s;
+    r.power_camera_mw =
+        r.keeps_up ? (r.total_pj * 1e-9 + r.static_mw * (r.period_s - r.seconds)) * r.frame_rate_hz
+                   : r.power_mw;
     return r;
+}
+
+std::vector<EnergyReport> energy_by_phase(const Stats& s, const std::vector<uint64_t>& phase_cycles,
+                                          const MachineConfig& cfg) {
+    const size_t n = std::max(s.by_phase.size(), phase_cycles.size());
+    std::vector<EnergyReport> out;
+    out.reserve(n);
+    const Stats none;
+    for (size_t i = 0; i < n; ++i)
+        out.push_back(energy_of(i < s.by_phase.size() ? s.by_phase[i] : none,
+                                i < phase_cycles.size() ? phase_cycles[i] : 0, cfg));
+    return out;
 }
 
 }  // namespace imap::isa

@@ -429,8 +429,10 @@ void Machine::load(const Program& prog) {
     if (prog_.phases.empty()) prog_.phases.push_back("default");
     code_ = std::move(code);
     runs_ = std::move(runs);
-    exec_diff_.assign(code_.size() + 1, 0);
-    lane_diff_.assign(code_.size() + 1, 0);
+    exec_rows_.clear();
+    lane_rows_.clear();
+    row_of_phase_.assign(prog_.phases.size(), -1);
+    phase_split_ = true;
     bind_handlers();
     reset();
 }
@@ -463,10 +465,60 @@ void Machine::reset() {
     cycles_ = 0;
     phase_ = 0;
     phase_cycles_.assign(prog_.phases.size(), 0);
-    std::fill(exec_diff_.begin(), exec_diff_.end(), 0);
-    std::fill(lane_diff_.begin(), lane_diff_.end(), 0);
+    for (auto& r : exec_rows_) std::fill(r.begin(), r.end(), 0);
+    for (auto& r : lane_rows_) std::fill(r.begin(), r.end(), 0);
     class_extra_.fill(0);
     instructions_ = pe_cycles_ = active_lane_cycles_ = ext_bytes_ = 0;
+    phase_running_.assign(prog_.phases.size(), Running{});
+    phase_mark_ = Running{};
+    select_phase_row();
+}
+
+void Machine::select_phase_row() {
+    int32_t& r = row_of_phase_[phase_];
+    if (r < 0) {
+        const size_t n = code_.size() + 1;
+        if ((exec_rows_.size() + 1) * n > kMaxPhaseSplitEntries && !exec_rows_.empty()) {
+            r = 0;  // share: the totals stay exact, the split by phase is lost
+            phase_split_ = false;
+        } else {
+            r = static_cast<int32_t>(exec_rows_.size());
+            exec_rows_.emplace_back(n, 0);
+            lane_rows_.emplace_back(n, 0);
+        }
+    }
+    exec_diff_ = exec_rows_[static_cast<size_t>(r)].data();
+    lane_diff_ = lane_rows_[static_cast<size_t>(r)].data();
+}
+
+Machine::Running Machine::running() const {
+    Running x;
+    x.instructions = instructions_;
+    x.pe_cycles = pe_cycles_;
+    x.active_lane_cycles = active_lane_cycles_;
+    x.ext_bytes = ext_bytes_;
+    x.class_extra = class_extra_;
+    return x;
+}
+
+namespace {
+// acc += now - mark
+template <class R>
+void add_running(R& acc, const R& now, const R& mark) {
+    acc.instructions += now.instructions - mark.instructions;
+    acc.pe_cycles += now.pe_cycles - mark.pe_cycles;
+    acc.active_lane_cycles += now.active_lane_cycles - mark.active_lane_cycles;
+    acc.ext_bytes += now.ext_bytes - mark.ext_bytes;
+    for (size_t c = 0; c < acc.class_extra.size(); ++c)
+        acc.class_extra[c] += now.class_extra[c] - mark.class_extra[c];
+}
+}  // namespace
+
+void Machine::change_phase(uint32_t old) {
+    const Running now = running();
+    add_running(phase_running_[old], now, phase_mark_);
+    phase_mark_ = now;
+    select_phase_row();
 }
 
 void Machine::recount_active() {
@@ -492,17 +544,14 @@ void Machine::fault(const std::string& msg, int64_t pe, int64_t address) const {
                 pc_, pe, address, cycles_);
 }
 
-const Stats& Machine::stats() const {
-    Stats s;
-    s.instructions = instructions_;
-    s.pe_cycles = pe_cycles_;
-    s.active_lane_cycles = active_lane_cycles_;
-    s.ext_bytes = ext_bytes_;
+void Machine::add_row(Stats& s, size_t r) const {
+    const int64_t* ed = exec_rows_[r].data();
+    const uint64_t* ld = lane_rows_[r].data();
     int64_t n = 0;
     uint64_t lanes = 0;
     for (size_t pc = 0; pc < code_.size(); ++pc) {
-        n += exec_diff_[pc];
-        lanes += lane_diff_[pc];
+        n += ed[pc];
+        lanes += ld[pc];
         if (n == 0) continue;
         const Decoded& d = code_[pc];
         const uint64_t k = static_cast<uint64_t>(n);
@@ -512,8 +561,31 @@ const Stats& Machine::stats() const {
         if (d.cls == static_cast<uint8_t>(CostClass::Ring))
             s.ring_hops += k * static_cast<uint64_t>(d.imm);
     }
+}
+
+const Stats& Machine::stats() const {
+    Stats s;
+    s.instructions = instructions_;
+    s.pe_cycles = pe_cycles_;
+    s.active_lane_cycles = active_lane_cycles_;
+    s.ext_bytes = ext_bytes_;
+    for (size_t r = 0; r < exec_rows_.size(); ++r) add_row(s, r);
     for (size_t c = 0; c < class_extra_.size(); ++c) s.class_cycles[c] += class_extra_[c];
-    stats_ = s;
+    if (phase_split_) {
+        s.by_phase.resize(prog_.phases.size());
+        for (size_t p = 0; p < s.by_phase.size(); ++p) {
+            Stats& b = s.by_phase[p];
+            if (row_of_phase_[p] >= 0) add_row(b, static_cast<size_t>(row_of_phase_[p]));
+            Running x = phase_running_[p];
+            if (p == phase_) add_running(x, running(), phase_mark_);  // the open phase
+            b.instructions = x.instructions;
+            b.pe_cycles = x.pe_cycles;
+            b.active_lane_cycles = x.active_lane_cycles;
+            b.ext_bytes = x.ext_bytes;
+            for (size_t c = 0; c < x.class_extra.size(); ++c) b.class_cycles[c] += x.class_extra[c];
+        }
+    }
+    stats_ = std::move(s);
     return stats_;
 }
 
@@ -527,6 +599,7 @@ inline void Machine::exec_one() {
     extra_ = 0;
     const uint64_t before = cycles_;
     const int active_before = active_;
+    const uint32_t phase = phase_;
     d.fn[full_](*this, d);
     const uint64_t c = d.cost + extra_;
     cycles_ += c;
@@ -542,6 +615,7 @@ inline void Machine::exec_one() {
         active_lane_cycles_ += c * static_cast<uint64_t>(active_);
     }
     pc_ = next_pc_;
+    if (phase_ != phase) change_phase(phase);
     if constexpr (Traced)
         observer_->on_instruction(*this, TraceEvent{pc, prog_.code[pc], before, cycles_});
 }
@@ -591,6 +665,7 @@ void Machine::exec_run(uint32_t start, uint64_t limit) {
     pe_cycles_ += r.pe_cycles;
     active_lane_cycles_ += r.pe_cycles * active;
     pc_ = next_pc_;
+    if (phase_ != phase) change_phase(phase);  // a `phase` marker ended the run
 }
 
 // The instructions start .. stop - 1 of a run completed (stop did not: a

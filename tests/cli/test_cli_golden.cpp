@@ -240,6 +240,21 @@ BOOST_FIXTURE_TEST_CASE(eval_tradeoff_table_json_and_plot, Fixture) {
         if (name == "paper") {
             paper = true;
             BOOST_TEST(r.at("a9_cycles_estimate").get<int64_t>() == 0);
+            // Energy beside time (issue 29 item 3): the headline case as
+            // imapsim run reports it for the same point (the default scene
+            // and ROI, D = 64, the cyclopean frame the firmware runs).
+            const Result h = run("run --model core --preset paper --D 64 --frame cyc --report " +
+                                 p("paper.json"));
+            BOOST_TEST_INFO(h.out);
+            BOOST_REQUIRE(h.code == 0);
+            const auto hj = read_json(p("paper.json"));
+            BOOST_TEST(r.at("fw_cycles_measured").get<int64_t>() == hj.at("cycles").get<int64_t>());
+            BOOST_TEST(
+                r.at("fw_energy_uj").get<double>() == hj.at("energy").at("total_uj").get<double>(),
+                boost::test_tools::tolerance(1e-12));
+            char uj[32];
+            std::snprintf(uj, sizeof uj, "%.3f", r.at("fw_energy_uj").get<double>());
+            BOOST_TEST(t.out.find(uj) != std::string::npos, uj);
         }
         if (name == "opencv-sgbm") {
             // present and scored, but never pinned (OpenCV's kernels vary by CPU)

@@ -139,6 +139,9 @@ BOOST_AUTO_TEST_CASE(machine_flag_errors) {
         {"--set indirect=off", "indirect"},
         {"--set e_alu_pj=-1", "invalid value -1 for e_alu_pj: allowed 0..1e+06 pJ"},
         {"--set energy_scale=0", "energy_scale: allowed 0.001..10000"},
+        {"--set frame_rate_hz=0",
+         "invalid value 0 for frame_rate_hz: allowed 0..1e+06 Hz, exclusive of 0"},
+        {"--set frame_rate_hz=2e6", "frame_rate_hz: allowed 0..1e+06 Hz, exclusive of 0"},
         {"--set s_pe_leak_uw=abc", "invalid value 'abc' for s_pe_leak_uw: expected a number"},
         {"--model nosuch", "--model"},
         {"--camera pal",
@@ -262,6 +265,75 @@ BOOST_AUTO_TEST_CASE(report_energy_is_events_times_energies) {
     fs::remove_all(d);
 }
 
+// Issue 29 item 3: the energy of each phase (the report's energy.phases, the
+// run's "energy by phase" lines) adds up to the frame's energy, every phase
+// that ran has one, and no other name appears.
+BOOST_AUTO_TEST_CASE(report_energy_by_phase_adds_up_to_the_frame) {
+    const fs::path d = tmpdir();
+    const std::string rep = (d / "p.json").string();
+    const Result r = run("run --model core --pes 16 --size 48x16 --D 8 --report " + rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    BOOST_TEST(r.out.find("energy by phase") != std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(rep));
+    const nlohmann::json& ph = j.at("energy").at("phases");
+    BOOST_REQUIRE(ph.is_object());
+    BOOST_TEST(ph.size() >= 5u);
+    double sum = 0;
+    for (const auto& [name, uj] : ph.items()) {
+        BOOST_TEST_INFO(name);
+        BOOST_TEST(j.at("phases").contains(name));
+        BOOST_TEST(uj.get<double>() > 0.0);
+        sum += uj.get<double>();
+        // printed with its share
+        BOOST_TEST(r.out.find("    " + name + " ") != std::string::npos);
+    }
+    for (const auto& [name, cyc] : j.at("phases").items()) BOOST_TEST(ph.contains(name), name);
+    BOOST_TEST(sum == j.at("energy").at("total_uj").get<double>(),
+               boost::test_tools::tolerance(1e-9));
+    fs::remove_all(d);
+}
+
+// Issue 29 item 3: power at the camera rate (--set frame_rate_hz), from the
+// report's own energy, static energy and time; a frame slower than the
+// camera's period says it cannot keep up and reports the frame-time power.
+BOOST_AUTO_TEST_CASE(report_power_at_the_camera_rate) {
+    const fs::path d = tmpdir();
+    const std::string rep = (d / "c.json").string(), slow = (d / "s.json").string();
+    const Result r =
+        run("run --model core --pes 16 --size 48x16 --D 8 --set frame_rate_hz=25 "
+            "--report " +
+            rep);
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE(r.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(rep));
+    const nlohmann::json& e = j.at("energy");
+    const double ms = j.at("modeled_ms").get<double>(), period_ms = 1000.0 / 25;
+    BOOST_REQUIRE(ms < period_ms);
+    const double total = e.at("total_uj").get<double>(), stat = e.at("static_uj").get<double>();
+    // uJ / ms = mW
+    const double want = (total + stat / ms * (period_ms - ms)) / period_ms;
+    BOOST_TEST(e.at("frame_rate_hz").get<double>() == 25.0);
+    BOOST_TEST(e.at("power_camera_mw").get<double>() == want, boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(e.at("camera_keeps_up").get<bool>());
+    BOOST_TEST(r.out.find("power at the camera rate: ") != std::string::npos);
+    BOOST_TEST(r.out.find(" at 25 fps (every 40.000 ms") != std::string::npos);
+    // A rate whose period (ms / 2) the frame cannot meet.
+    const std::string rate = std::to_string(static_cast<int>(2000.0 / ms));
+    const Result s =
+        run("run --model core --pes 16 --size 48x16 --D 8 --set frame_rate_hz=" + rate +
+            " --report " + slow);
+    BOOST_TEST_INFO(s.out);
+    BOOST_REQUIRE(s.code == 0);
+    const nlohmann::json k = nlohmann::json::parse(std::ifstream(slow));
+    BOOST_TEST(!k.at("energy").at("camera_keeps_up").get<bool>());
+    BOOST_TEST(k.at("energy").at("power_camera_mw").get<double>() ==
+               k.at("energy").at("power_mw").get<double>());
+    BOOST_TEST(s.out.find("> the camera period") != std::string::npos);
+    BOOST_TEST(s.out.find("cannot keep up") != std::string::npos);
+    fs::remove_all(d);
+}
+
 BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
     const fs::path d = tmpdir();
     const char* configs[] = {
@@ -292,6 +364,7 @@ BOOST_AUTO_TEST_CASE(tlm_and_core_agree_on_cycles_and_phases) {
             BOOST_TEST(rep[0].at("cycles") == rep[1].at("cycles"));
             BOOST_TEST(rep[0].at("phases") == rep[1].at("phases"));
             BOOST_TEST(rep[0].at("energy").at("events") == rep[1].at("energy").at("events"));
+            BOOST_TEST(rep[0].at("energy").at("phases") == rep[1].at("energy").at("phases"));
         }
     }
     fs::remove_all(d);
@@ -505,6 +578,8 @@ BOOST_AUTO_TEST_CASE(lockstep_and_rtl_reports_have_their_fields) {
     const nlohmann::json cj = nlohmann::json::parse(std::ifstream(core));
     BOOST_TEST(rj.at("energy").at("events") == cj.at("energy").at("events"));
     BOOST_TEST(j.at("energy").at("events") == cj.at("energy").at("events"));
+    BOOST_TEST(rj.at("energy").at("phases") == cj.at("energy").at("phases"));
+    BOOST_TEST(j.at("energy").at("phases") == cj.at("energy").at("phases"));
     BOOST_TEST(rj.at("energy").at("events_source").get<std::string>().find("instruction-set") ==
                0u);
     BOOST_TEST(j.at("energy").at("events_source") == "lockstep's TLM side");

@@ -148,10 +148,11 @@ BOOST_AUTO_TEST_CASE(small_sweep_rows_csv_json_plot) {
         BOOST_TEST((std::find(head.begin(), head.end(), c) != head.end()));
     }
     BOOST_TEST((std::find(head.begin(), head.end(), "phase_forward") != head.end()));
-    // Energy (docs/energy.md): the last two columns, after every older one.
-    BOOST_REQUIRE(head.size() >= 2u);
-    BOOST_TEST(head[head.size() - 2] == "energy_uj");
-    BOOST_TEST(head[head.size() - 1] == "power_mw");
+    // Energy (docs/energy.md): the last three columns, after every older one.
+    BOOST_REQUIRE(head.size() >= 3u);
+    BOOST_TEST(head[head.size() - 3] == "energy_uj");
+    BOOST_TEST(head[head.size() - 2] == "power_mw");
+    BOOST_TEST(head[head.size() - 1] == "edp");
 
     // A direct run with 60 bytes of local memory is refused by the planner:
     // the sweep reports that point as a row with the same message.
@@ -459,8 +460,8 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_REQUIRE_EQUAL(r.code, 0);
     const Csv c = parse_csv(slurp(csv));
     BOOST_REQUIRE(!c.empty());
-    BOOST_TEST(
-        (c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles", "dominant_phase"}));
+    BOOST_TEST((c[0] == std::vector<std::string>{"width", "D", "modeled_ms", "cycles",
+                                                 "dominant_phase", "energy_uj"}));
     // The paper's grid: widths 32/64/128, D 16/32/64/128 with D <= width.
     std::set<std::pair<int, int>> want;
     for (int w : {32, 64, 128})
@@ -469,14 +470,16 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_REQUIRE_EQUAL(want.size(), 9u);
     std::set<std::pair<int, int>> got;
     uint64_t headline = 0;
+    double headline_uj = 0;
     for (size_t i = 1; i < c.size(); ++i) {
-        BOOST_REQUIRE_EQUAL(c[i].size(), 5u);
+        BOOST_REQUIRE_EQUAL(c[i].size(), 6u);
         BOOST_TEST(!c[i][4].empty());
+        BOOST_TEST(std::stod(c[i][5]) > 0.0);
         const int w = std::stoi(c[i][0]), dd = std::stoi(c[i][1]);
         got.insert({w, dd});
         const uint64_t cyc = std::stoull(c[i][3]);
         BOOST_TEST(std::stod(c[i][2]) == cyc / 40e3, boost::test_tools::tolerance(1e-6));
-        if (w == 128 && dd == 64) headline = cyc;
+        if (w == 128 && dd == 64) headline = cyc, headline_uj = std::stod(c[i][5]);
     }
     BOOST_TEST(c.size() == 10u);
     BOOST_TEST((got == want));
@@ -484,6 +487,13 @@ BOOST_AUTO_TEST_CASE(table1_grid) {
     BOOST_TEST(headline ==
                direct_cycles("--size 128x128 --roi 0,0,128,128 --D 64 --pes 256 --clock-mhz 40",
                              d / "headline.json"));
+    // ... and its energy per frame is the one that run reports for it
+    // (issue 29 item 3), beside the time in the table's second grid.
+    const json hj = json::parse(slurp(d / "headline.json"));
+    BOOST_TEST(headline_uj == hj.at("energy").at("total_uj").get<double>(),
+               boost::test_tools::tolerance(1e-6));
+    BOOST_TEST(r.out.find("Energy per frame (uJ) of the same cells") != std::string::npos);
+    BOOST_TEST(r.out.find("energy uJ") != std::string::npos);
     // The stdout table shows the paper's 85 ms beside the headline cell.
     std::istringstream lines(r.out);
     std::string line;
@@ -593,4 +603,48 @@ BOOST_AUTO_TEST_CASE(area_column_grows_with_the_pe_count) {
     BOOST_TEST(j.at("area").at("cells").get<uint64_t>() == c8);
     BOOST_TEST(c16 - c8 == 8 * pe);
     BOOST_TEST(m16 - m8 == 8u * (8u * 16u + 8u * 1024u));
+}
+
+// Issue 29 item 3: --y chooses the table's extra column and the plot's y;
+// --pareto lists the Pareto-optimal points and draws time against energy;
+// edp = energy x modeled time; a bad --y is refused before anything runs.
+BOOST_AUTO_TEST_CASE(y_metric_and_pareto_view) {
+    const fs::path d = tmpdir() / "pareto";
+    fs::create_directories(d);
+    const fs::path csv = d / "p.csv", png = d / "p.png", never = d / "never.csv";
+    const Result bad =
+        run("sweep --roi-size 32x16 --D 8 --pes 8,16 --y speed --csv " + never.string());
+    BOOST_TEST_INFO(bad.out);
+    BOOST_TEST(bad.code == 2);
+    BOOST_TEST(bad.out.find("invalid value 'speed' for --y: expected one of time, energy, power, "
+                            "edp, area") != std::string::npos);
+    BOOST_TEST(!fs::exists(never));
+
+    const Result r =
+        run("sweep --model core --roi-size 32x16 --D 8 --pes 8,16,32 --y energy "
+            "--pareto --csv " +
+            csv.string() + " --plot " + png.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    BOOST_TEST(r.out.find("energy uJ") != std::string::npos);
+    BOOST_TEST(r.out.find("  least energy: pes=") != std::string::npos);
+    BOOST_TEST(r.out.find("Pareto-optimal") != std::string::npos);
+    BOOST_TEST(fs::exists(png));
+    const std::string gp = slurp(d / "p.gp");
+    BOOST_TEST(gp.find("Energy per frame vs modeled frame time") != std::string::npos);
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 3u);
+    // The Pareto set recomputed from the CSV: a point is listed exactly
+    // when no other is at most as slow and at most as much energy, better in one.
+    for (const auto& a : rows) {
+        const double ta = std::stod(a.at("modeled_ms")), ea = std::stod(a.at("energy_uj"));
+        BOOST_TEST(std::stod(a.at("edp")) == ea * ta, boost::test_tools::tolerance(1e-5));
+        bool dominated = false;
+        for (const auto& b : rows) {
+            const double tb = std::stod(b.at("modeled_ms")), eb = std::stod(b.at("energy_uj"));
+            dominated |= tb <= ta && eb <= ea && (tb < ta || eb < ea);
+        }
+        const bool listed = r.out.find("    pes=" + a.at("pes") + ": ") != std::string::npos;
+        BOOST_TEST(listed == !dominated, "pes=" << a.at("pes"));
+    }
 }

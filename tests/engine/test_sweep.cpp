@@ -3,6 +3,7 @@
 // folder, knees and their explanation, CSV / JSON columns (dominant phase,
 // area when reported), the figure.
 #define BOOST_TEST_MODULE engine_sweep
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 
@@ -247,11 +248,13 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     BOOST_TEST(head.find("phase_forward,bound_cycles,efficiency,bound_relayout_in,bound_forward") !=
                std::string::npos);
     // ... and the energy at the very end (docs/energy.md), empty without one.
-    BOOST_TEST(head.find("bound_forward,energy_uj,power_mw") != std::string::npos, head);
-    BOOST_TEST(
-        csv.find(",20000,60000,40000,0.5000,10000,30000,12.500000,6.250000\n") != std::string::npos,
-        csv);
-    BOOST_TEST(csv.find(",20000,20000,,,,,,\n") != std::string::npos, csv);
+    // energy x delay (uJ x ms) the last column, after power_mw
+    BOOST_TEST(head.find("bound_forward,energy_uj,power_mw,edp") != std::string::npos, head);
+    BOOST_TEST(head.substr(head.size() - 4) == ",edp", head);
+    BOOST_TEST(csv.find(",20000,60000,40000,0.5000,10000,30000,12.500000,6.250000,25.000000\n") !=
+                   std::string::npos,
+               csv);
+    BOOST_TEST(csv.find(",20000,20000,,,,,,,\n") != std::string::npos, csv);
     const auto j = sw::to_json(p, r);
     BOOST_TEST(j["rows"][0]["dominant_phase"] == "forward");
     BOOST_TEST(j["rows"][1]["area"]["cells"] == 4096);
@@ -262,6 +265,8 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     BOOST_TEST(j["rows"][0]["energy"]["total_uj"] == 12.5);
     BOOST_TEST(j["rows"][0]["energy"]["by_class"]["static_pe"] == 2.5);
     BOOST_TEST(!j["rows"][1].contains("energy"));
+    BOOST_TEST(j["rows"][0]["edp"] == 25.0);
+    BOOST_TEST(!j["rows"][1].contains("edp"));
     BOOST_TEST(r.exit_code(false) == 0);
     // The exit code: nothing ran is 5, a failed row is 5, interrupted 130.
     sw::Result none;
@@ -275,4 +280,118 @@ BOOST_AUTO_TEST_CASE(csv_and_json_columns) {
     BOOST_TEST(none.exit_code(true) == 0);
     none.interrupted = true;
     BOOST_TEST(none.exit_code(true) == 130);
+}
+
+namespace {
+// A ran row with a time and an energy (uJ).
+sw::Row energy_row(const std::string& pes, double ms, double uj) {
+    sw::Row r = ran_row({pes}, ms, {{"forward", 1}});
+    eng::Energy e;
+    e.total_uj = uj;
+    e.power_mw = uj / ms;
+    r.run->energy = e;
+    return r;
+}
+}  // namespace
+
+// Issue 29 item 3: the Pareto set by modeled time and energy, on rows made
+// by hand; the expected set worked out here:
+//   0 (1, 10)   optimal: nothing is both at most 1 ms and at most 10 uJ but 0
+//   1 (2, 5)    optimal (3 is the same point: neither is better)
+//   2 (3, 6)    dominated by 1 (faster and less energy)
+//   3 (2, 5)    optimal (a tie with 1)
+//   4 (0.5, 20) optimal: the fastest
+//   5 (1, 12)   dominated by 0 (as fast, less energy)
+//   6           does not fit: not a design point
+//   7 (4, 1)    optimal: the least energy
+//   8 (5, 1)    dominated by 7 (same energy, faster)
+//   9 (0.2, -)  ran, no energy: not a design point
+//  10 (0.1, 0.1) not bit-exact: not a design point (it would dominate all)
+BOOST_AUTO_TEST_CASE(pareto_set_of_hand_made_rows) {
+    std::vector<sw::Row> rows = {energy_row("0", 1, 10),   energy_row("1", 2, 5),
+                                 energy_row("2", 3, 6),    energy_row("3", 2, 5),
+                                 energy_row("4", 0.5, 20), energy_row("5", 1, 12)};
+    sw::Row nf;
+    nf.values = {"6"};
+    nf.status = sw::Status::DoesNotFit;
+    rows.push_back(nf);
+    rows.push_back(energy_row("7", 4, 1));
+    rows.push_back(energy_row("8", 5, 1));
+    rows.push_back(ran_row({"9"}, 0.2, {{"forward", 1}}));
+    sw::Row bad = energy_row("10", 0.1, 0.1);
+    bad.status = sw::Status::Mismatch;
+    bad.run->outcome = eng::Outcome::Mismatch;
+    bad.run->bit_exact = false;
+    rows.push_back(bad);
+    BOOST_TEST((sw::pareto_rows(rows) == std::vector<size_t>{0, 1, 3, 4, 7}));
+    // one point alone is optimal; none gives none
+    BOOST_TEST((sw::pareto_rows({rows[2]}) == std::vector<size_t>{0}));
+    BOOST_TEST(sw::pareto_rows({nf}).empty());
+
+    // The listing names them fastest first; the figure circles them.
+    sw::Plan p;
+    sw::Axis ax;  // the row labels (not PE counts)
+    ax.name = "pes";
+    ax.kind = sw::AxisKind::Machine;
+    for (int i = 0; i <= 10; ++i) ax.values.push_back(std::to_string(i));
+    p.swept = {ax};
+    sw::Result r;
+    r.rows = rows;
+    const auto lines = sw::pareto_lines(p, r);
+    BOOST_REQUIRE_EQUAL(lines.size(), 6u);
+    BOOST_TEST(lines[0].find("5 of 8 points") != std::string::npos, lines[0]);
+    BOOST_TEST(lines[1].find("pes=4: 0.500 ms, 20.000 uJ") != std::string::npos, lines[1]);
+    BOOST_TEST(lines[5].find("pes=7: 4.000 ms, 1.000 uJ") != std::string::npos, lines[5]);
+    eng::plot::Figure f;
+    BOOST_REQUIRE(sw::make_pareto_figure(p, r, &f));
+    BOOST_REQUIRE_EQUAL(f.series.size(), 2u);
+    BOOST_TEST(f.series[0].scatter);
+    BOOST_TEST(f.series[0].x.size() == 8u);
+    BOOST_TEST(f.series[0].size.empty());  // no area: one size, and a note says so
+    BOOST_TEST(f.subtitle.find("no area") != std::string::npos, f.subtitle);
+    BOOST_TEST((f.series[1].x == std::vector<double>{0.5, 1, 2, 2, 4}));
+    BOOST_TEST(f.annotations.size() == 5u);
+    // with an area on every point: sizes, the largest area the largest point
+    for (sw::Row& row : r.rows)
+        if (row.run) row.run->area = eng::Area{row.values[0] == "7" ? 4000u : 1000u, 0};
+    eng::plot::Figure g;
+    BOOST_REQUIRE(sw::make_pareto_figure(p, r, &g));
+    BOOST_REQUIRE_EQUAL(g.series[0].size.size(), 8u);
+    BOOST_TEST(*std::max_element(g.series[0].size.begin(), g.series[0].size.end()) == 4.0);
+    BOOST_TEST(g.subtitle.find("point size: area") != std::string::npos, g.subtitle);
+    const std::string script = eng::plot::script_text(g, "g.dat", "g.png");
+    BOOST_TEST(script.find("ps variable") != std::string::npos);
+}
+
+// --y: the metric's column in the table, the least point in the summary,
+// the plot's y; time leaves the table as it was.
+BOOST_AUTO_TEST_CASE(y_metric_column_summary_and_plot) {
+    BOOST_TEST(sw::metric_from_name("edp").has_value());
+    BOOST_TEST(!sw::metric_from_name("speed").has_value());
+    sw::Plan p = pes_plan({"8", "16"});
+    p.rows = {energy_row("8", 2.0, 12.5), energy_row("16", 1.0, 20.0)};
+    BOOST_TEST(sw::metric_value(p.rows[0], sw::Metric::Edp) == 25.0);
+    BOOST_TEST(sw::metric_value(p.rows[1], sw::Metric::Power) == 20.0);
+    BOOST_TEST(std::isnan(sw::metric_value(p.rows[0], sw::Metric::Area)));
+    const std::string h_time = sw::header_lines(p, nullptr).back();
+    const std::string r_time = sw::row_line(p, p.rows[0]);
+    BOOST_TEST(h_time.find("energy") == std::string::npos);
+    p.y = sw::Metric::Edp;
+    const std::string h = sw::header_lines(p, nullptr).back();
+    BOOST_TEST(h.find("modeled ms  EDP uJ*ms") != std::string::npos, h);
+    BOOST_TEST(sw::row_line(p, p.rows[0]).find("2.000     25.000") != std::string::npos,
+               sw::row_line(p, p.rows[0]));
+    sw::Result r;
+    r.total = 2;
+    r.rows = p.rows;
+    const auto sum = sw::summary_lines(p, r);
+    BOOST_TEST(sum.back() == "  least edp: pes=16, 20.000 uJ*ms (1.000 ms)", sum.back());
+    eng::plot::Figure f;
+    BOOST_REQUIRE(sw::make_figure(p, r, 0, &f));
+    BOOST_TEST((f.series[0].y == std::vector<double>{25.0, 20.0}));
+    BOOST_TEST(f.hlines.empty());  // the real-time lines are for time
+    BOOST_TEST(f.ylabel.find("energy x delay") != std::string::npos, f.ylabel);
+    p.y = sw::Metric::Time;
+    BOOST_TEST(sw::header_lines(p, nullptr).back() == h_time);
+    BOOST_TEST(sw::row_line(p, p.rows[0]) == r_time);
 }

@@ -145,6 +145,132 @@ BOOST_AUTO_TEST_CASE(energy_is_events_times_energies) {
     BOOST_TEST(sum == r.total_pj, tol);
 }
 
+// Phases (issue 29 item 3): the executor splits the counts at the phase
+// markers. Counted by hand, per phase (P = 4, PE 3 masked off in phase a):
+//   default  pidx (ALU 4), halt (CP 1)                         2 instructions
+//   a        cltui (ALU 4), mif / mend (mask 2 x 4), addi (ALU 3, 1 masked),
+//            later max (min-max 4)                             5 instructions
+//   b        rxl #2 (ring 2 hops x 4), ld (load 4)             2 instructions
+// Phase a is entered twice: the counts follow the phase, not the PC.
+const char* kPhased = R"(
+        pidx r0, #0
+        .phase a
+        cltui r0, #3
+        mif
+          addi r1, r1, #1
+        mend
+        .phase b
+        rxl r3, r1, #2
+        ld r4, [#5]
+        .phase a
+        max r2, r1, r0
+        .phase default
+        halt)";
+
+void check_phase_counts(const Machine& m) {
+    const Stats& s = m.stats();
+    const Program& p = m.program();
+    BOOST_REQUIRE_EQUAL(p.phases.size(), 3u);
+    BOOST_REQUIRE_EQUAL(s.by_phase.size(), 3u);
+    BOOST_REQUIRE(p.phases[1] == "a");
+    BOOST_REQUIRE(p.phases[2] == "b");
+    const EnergyEvents d = energy_events(s.by_phase[0], 4, 0);
+    const EnergyEvents a = energy_events(s.by_phase[1], 4, 0);
+    const EnergyEvents b = energy_events(s.by_phase[2], 4, 0);
+    BOOST_TEST(d.alu_lanes == 4u);
+    BOOST_TEST(d.cp_instructions == 1u);
+    BOOST_TEST(d.instructions == 2u);
+    BOOST_TEST(d.masked_lanes + d.minmax_lanes + d.load_lanes + d.ring_pe_hops + d.mask_pe_ops ==
+               0u);
+    BOOST_TEST(a.alu_lanes == 4u + 3u);
+    BOOST_TEST(a.masked_lanes == 1u);
+    BOOST_TEST(a.mask_pe_ops == 8u);
+    BOOST_TEST(a.minmax_lanes == 4u);
+    BOOST_TEST(a.instructions == 5u);
+    BOOST_TEST(a.load_lanes + a.ring_pe_hops + a.cp_instructions == 0u);
+    BOOST_TEST(b.ring_pe_hops == 8u);
+    BOOST_TEST(b.load_lanes == 4u);
+    BOOST_TEST(b.instructions == 2u);
+    BOOST_TEST(b.alu_lanes + b.masked_lanes + b.mask_pe_ops + b.cp_instructions == 0u);
+    // The phases add up to the totals, opcode by opcode.
+    for (size_t o = 0; o < 256; ++o) {
+        uint64_t n = 0, l = 0;
+        for (const Stats& x : s.by_phase) n += x.op_counts[o], l += x.op_lanes[o];
+        BOOST_TEST_INFO("opcode " << o);
+        BOOST_TEST(n == s.op_counts[o]);
+        BOOST_TEST(l == s.op_lanes[o]);
+    }
+    uint64_t cyc = 0;
+    for (const Stats& x : s.by_phase) {
+        BOOST_TEST(x.by_phase.empty());
+        for (uint64_t c : x.class_cycles) cyc += c;
+    }
+    BOOST_TEST(cyc == m.cycles());
+}
+
+BOOST_AUTO_TEST_CASE(phase_counts_split_at_the_markers_counted_by_hand) {
+    auto m = run(kPhased, small(4));
+    BOOST_REQUIRE(m->halted());
+    check_phase_counts(*m);
+    // single steps (exec_one) and cycle limits (partial runs) split the same
+    Machine a(small(4));
+    a.load(assemble_string(kPhased, "t.s"));
+    while (!a.halted()) a.step();
+    check_phase_counts(a);
+    Machine b(small(4));
+    b.load(assemble_string(kPhased, "t.s"));
+    for (uint64_t lim = 1; !b.halted(); ++lim) b.run(lim);
+    check_phase_counts(b);
+    // reset clears them
+    b.reset();
+    BOOST_TEST(b.stats().by_phase.size() == 3u);
+    for (const Stats& x : b.stats().by_phase) BOOST_TEST(x.instructions == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(phase_energies_are_their_events_times_energies_and_add_up) {
+    MachineConfig cfg = small(4);
+    cfg.mem_bytes = 4096;  // local-memory energy x 2
+    EnergyTable& t = cfg.energy;
+    t.e_alu_pj = 1;
+    t.e_minmax_pj = 3;
+    t.e_shift_pj = 5;
+    t.e_rf_pj = 7;
+    t.e_masked_pj = 11;
+    t.e_load_pj = 13;
+    t.e_store_pj = 17;
+    t.e_ring_hop_pj = 19;
+    t.e_mask_pj = 23;
+    t.e_cp_pj = 29;
+    t.e_issue_pj = 31;
+    t.s_pe_clock_pj = 47;
+    t.s_cp_clock_pj = 53;
+    t.s_pe_leak_uw = 59;
+    t.s_cp_leak_uw = 61;
+    t.energy_scale = 2;
+    auto m = run(kPhased, cfg);
+    const std::vector<uint64_t>& pc = m->phase_cycles();
+    BOOST_REQUIRE_EQUAL(pc.size(), 3u);
+    const std::vector<EnergyReport> e = energy_by_phase(m->stats(), pc, cfg);
+    BOOST_REQUIRE_EQUAL(e.size(), 3u);
+    // Dynamic energy of each phase from the hand counts above (k = 2).
+    const double k = 2;
+    const double dyn[3] = {k * (4 * 1 + 4 * 7 + 1 * 29 + 2 * 31),                         // default
+                           k * (7 * 1 + 4 * 3 + (7 + 4) * 7 + 1 * 11 + 8 * 23 + 5 * 31),  // a
+                           k * (4 * 13 * 2.0 + 8 * 19 + 2 * 31)};                         // b
+    const auto tol = boost::test_tools::tolerance(1e-12);
+    double sum = 0;
+    for (size_t i = 0; i < 3; ++i) {
+        BOOST_TEST_INFO("phase " << i);
+        const double c = static_cast<double>(pc[i]), sec = c / 40e6;
+        const double stat = 4.0 * (c * 47 * k + sec * 59e6) + (c * 53 * k + sec * 61e6);
+        BOOST_TEST(e[i].dynamic_pj == dyn[i], tol);
+        BOOST_TEST(e[i].static_pj == stat, tol);
+        sum += e[i].total_pj;
+    }
+    const EnergyReport whole = energy_of(m->stats(), m->cycles(), cfg);
+    BOOST_TEST(sum == whole.total_pj, tol);
+}
+
 BOOST_AUTO_TEST_CASE(static_energy_scales_with_cycles_times_pes) {
     // The same program at P and 2P (same cycles: no P-dependent cost), and
     // a longer program (more cycles); the CP's static part subtracted.
@@ -170,6 +296,37 @@ BOOST_AUTO_TEST_CASE(static_energy_scales_with_cycles_times_pes) {
                boost::test_tools::tolerance(1e-12));
 }
 
+// Issue 29 item 3: the average power at the camera's rate, worked out here
+// from the report's energy, static energy and time: the frame, then idle at
+// the static power until the next frame; a frame slower than the camera's
+// period cannot keep up and reports the frame-time power.
+BOOST_AUTO_TEST_CASE(power_at_the_camera_rate) {
+    MachineConfig cfg = small(4);
+    cfg.energy.frame_rate_hz = 25;
+    auto m = run(kMasked, cfg);
+    const EnergyReport r = energy_of(m->stats(), m->cycles(), cfg);
+    const double sec = static_cast<double>(m->cycles()) / 40e6;
+    const double static_w = r.static_pj * 1e-12 / sec;
+    const double want_w = (r.total_pj * 1e-12 + static_w * (1.0 / 25 - sec)) * 25;
+    const auto tol = boost::test_tools::tolerance(1e-12);
+    BOOST_TEST(r.keeps_up);
+    BOOST_TEST(r.frame_rate_hz == 25.0);
+    BOOST_TEST(r.period_s == 0.04, tol);
+    BOOST_TEST(r.static_mw == static_w * 1e3, tol);
+    BOOST_TEST(r.power_camera_mw == want_w * 1e3, tol);
+    BOOST_TEST(r.power_camera_mw < r.power_mw);  // idle is cheaper than running
+    // 1 MHz and a 1 us camera period: the frame's cycles take longer
+    cfg.clock_mhz = 1;
+    cfg.energy.frame_rate_hz = 1e6;
+    const EnergyReport slow = energy_of(m->stats(), m->cycles(), cfg);
+    BOOST_REQUIRE(m->cycles() > 1u);
+    BOOST_TEST(!slow.keeps_up);
+    BOOST_TEST(slow.power_camera_mw == slow.power_mw);
+    // the rate only changes the camera-rate figure
+    cfg.energy.frame_rate_hz = 30;
+    BOOST_TEST(energy_of(m->stats(), m->cycles(), cfg).total_pj == slow.total_pj);
+}
+
 BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
     for (const EnergyTable::Field& f : EnergyTable::fields()) {
         BOOST_TEST_INFO(f.name);
@@ -188,6 +345,7 @@ BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
                 BOOST_TEST(w.find("allowed ") != std::string::npos, w);
             }
         }
+        if (f.min_exclusive) BOOST_CHECK_THROW(c.set(f.name, "0"), ConfigError);
         BOOST_CHECK_THROW(c.set(f.name, "abc"), ConfigError);
         BOOST_CHECK_THROW(c.set(f.name, "nan"), ConfigError);
         c.energy.*f.ptr = f.max * 2;

@@ -14,6 +14,7 @@
 #include "imap/golden/estimate.hpp"
 #include "imap/golden/stereo.hpp"
 #include "imap/isa/config.hpp"
+#include "imap/isa/energy.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/matchers.hpp"
 #include "imap/vision/perturb.hpp"
@@ -79,6 +80,7 @@ json matcher_params(const std::string& name, const g::Params& p) {
 // The A.9 options the firmware does not run yet come on top as an estimate.
 struct Modeled {
     int64_t fw_cycles = -1;  // measured: the firmware running firmware_part(p)
+    double fw_uj = 0;        // its energy per frame (docs/energy.md), from the same run
     g::OptionCost est;       // estimated: the A.9 options not in the firmware
     double clock_mhz = 40;
     bool ok() const { return fw_cycles >= 0; }
@@ -104,6 +106,7 @@ Modeled modeled_headline(const g::Params& p) {
         const imap::firmware::FrameResult r = imap::firmware::run_frame_core(
             plan, prog, v::view_of(sc.left), v::view_of(sc.right), cfg);
         m.fw_cycles = static_cast<int64_t>(r.cycles);
+        m.fw_uj = imap::isa::energy_of(r.stats, r.cycles, cfg).total_pj * 1e-6;
     } catch (const std::exception&) {
         m.fw_cycles = -1;  // refused (does not fit): shown as "-"
     }
@@ -168,22 +171,23 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
         "running the variant (measured: the paper's algorithm with --ad-max, --mode joint, "
         "--dissim bt, the census and the window), +A.9 = ESTIMATE of the options not in the "
         "firmware (none today); fw 'refused' = the firmware refuses the variant at the "
-        "headline\n\n",
+        "headline; fw uJ = energy per frame of the firmware's run ([A] energy model, "
+        "docs/energy.md; the +A.9 estimate has none)\n\n",
         delta_txt, scenes.size());
     std::printf("%-16s %7s %7s %7s", "variant", "nonocc", "all", "disc");
     for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
-    std::printf(" %8s %8s %9s %8s\n", "fw ms", "+A.9 ms", "total ms", "cpu ms");
+    std::printf(" %8s %8s %9s %9s %8s\n", "fw ms", "+A.9 ms", "total ms", "fw uJ", "cpu ms");
     for (const TRow& r : rows) {
         std::printf("%-16s %7.2f %7.2f %7.2f", r.name.c_str(), r.mean.nonocc, r.mean.all,
                     r.mean.disc);
         for (const auto& b : r.per_scene) std::printf(" %8.2f", b.nonocc);
         if (!r.golden)
-            std::printf(" %8s %8s %9s", "-", "-", "-");
+            std::printf(" %8s %8s %9s %9s", "-", "-", "-", "-");
         else if (!r.model.ok())
-            std::printf(" %8s %8.2f %9s", "refused", r.model.est_ms(), "-");
+            std::printf(" %8s %8.2f %9s %9s", "refused", r.model.est_ms(), "-", "-");
         else
-            std::printf(" %8.2f %8.2f %9.2f", r.model.fw_ms(), r.model.est_ms(),
-                        r.model.total_ms());
+            std::printf(" %8.2f %8.2f %9.2f %9.3f", r.model.fw_ms(), r.model.est_ms(),
+                        r.model.total_ms(), r.model.fw_uj);
         std::printf(" %8.1f\n", r.ms);
     }
     std::printf("\nvariants:\n");
@@ -251,6 +255,7 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
                 j["a9_cycles_estimate"] = r.model.est.cycles;
                 j["a9_local_bytes_estimate"] = r.model.est.local_bytes;
                 j["modeled_ms"] = r.model.ok() ? json(r.model.total_ms()) : json(nullptr);
+                j["fw_energy_uj"] = r.model.ok() ? json(r.model.fw_uj) : json(nullptr);
             }
             if (!o.perturb.empty()) j["perturb"] = o.perturb;
             arr.push_back(j);

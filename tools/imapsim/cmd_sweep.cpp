@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "cli_common.hpp"
@@ -27,7 +28,8 @@ namespace sw = imap::engine::sweep;
 namespace {
 
 struct SweepOptions {
-    std::string csv, json, plot, plot_size = "900x600", x;
+    std::string csv, json, plot, plot_size = "900x600", x, y = "time";
+    bool pareto = false;
     std::string model = kDefaultModel;
     std::string left, right, roi_size;
     uint64_t seed = 1;
@@ -120,6 +122,16 @@ Subcommand register_sweep(CLI::App& app) {
     sub->add_option("--x", o->x,
                     "plot x axis and the axis knees are looked for along: a swept axis "
                     "(default: the first on the line)");
+    sub->add_option("--y", o->y,
+                    std::string("what the table highlights (a column and the least point) and "
+                                "the plot's y axis: ") +
+                        sw::kMetricNames +
+                        " (energy per frame uJ, average power mW, energy x delay uJ*ms, area "
+                        "cells; docs/whatif.md)")
+        ->capture_default_str();
+    sub->add_flag("--pareto", o->pareto,
+                  "list the Pareto-optimal points by modeled time and energy per frame; with "
+                  "--plot, draw time against energy (area as the point size) instead of --y");
     sub->add_option("--model", o->model, "model to run: " + model_names())->capture_default_str();
     sub->add_option("--left", o->left, "left image (default: the synthetic scene)");
     sub->add_option("--right", o->right, "right image");
@@ -135,6 +147,10 @@ Subcommand register_sweep(CLI::App& app) {
     return {
         sub, [o, sub]() {
             // Outputs (checked before the run).
+            const std::optional<sw::Metric> metric = sw::metric_from_name(o->y);
+            if (!metric)
+                throw UserError("invalid value '" + o->y + "' for --y: expected one of " +
+                                sw::kMetricNames);
             check_output_file("--csv", o->csv, false);
             check_output_file("--json", o->json, false);
             if (!o->plot.empty()) {
@@ -299,8 +315,12 @@ Subcommand register_sweep(CLI::App& app) {
             if (!o->plot.empty() && plan.swept.empty())
                 throw UserError("--plot needs a swept axis");
             const size_t xi = x_index(plan.swept, o->x);
+            plan.y = *metric;
             session->exec_keep = o->exec.keep;
             const sw::Result r = run_sweep_session(*session, plan, xi);
+            if (o->pareto && !plan.dry_run)
+                for (const std::string& l : sw::pareto_lines(plan, r))
+                    std::printf("%s\n", l.c_str());
 
             if (!o->csv.empty()) {
                 v::write_text_atomic(o->csv, sw::to_csv(plan, r));
@@ -314,14 +334,20 @@ Subcommand register_sweep(CLI::App& app) {
                 eng::plot::Figure f;
                 f.width = std::atoi(o->plot_size.c_str());
                 f.height = std::atoi(o->plot_size.substr(o->plot_size.find('x') + 1).c_str());
-                if (sw::make_figure(plan, r, xi, &f)) {
+                if (o->pareto ? sw::make_pareto_figure(plan, r, &f)
+                              : sw::make_figure(plan, r, xi, &f)) {
                     eng::plot::write_plot(f, o->plot);
                     std::printf("  plot -> %s (gnuplot script %s, data %s)\n", o->plot.c_str(),
                                 eng::plot::script_path(o->plot).c_str(),
                                 eng::plot::data_path(o->plot).c_str());
                 } else {
                     std::fprintf(stderr,
-                                 "imapsim sweep: warning: no point ran bit-exact, %s not written\n",
+                                 "imapsim sweep: warning: no point ran bit-exact%s, %s not "
+                                 "written\n",
+                                 o->pareto                     ? " with an energy"
+                                 : *metric == sw::Metric::Time ? ""
+                                 : *metric == sw::Metric::Area ? " with an area"
+                                                               : " with an energy",
                                  o->plot.c_str());
                 }
             }

@@ -4,6 +4,7 @@
 // engine (any executor); prints modeled ms per cell with the paper's 85 ms
 // beside the headline cell (128 wide, D = 64).
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -39,8 +40,10 @@ Subcommand register_table1(CLI::App& app) {
     CLI::App* sub = app.add_subcommand(
         "table1",
         "The paper's grid on the modeled board: 256 PEs, 40 MHz, ROI height 128, widths "
-        "32/64/128, D 16/32/64/128 (D <= width); modeled ms per cell (docs/whatif.md)");
-    sub->add_option("--csv", o->csv, "write width,D,modeled_ms,cycles,dominant_phase here");
+        "32/64/128, D 16/32/64/128 (D <= width); modeled ms and energy (uJ) per cell "
+        "(docs/whatif.md)");
+    sub->add_option("--csv", o->csv,
+                    "write width,D,modeled_ms,cycles,dominant_phase,energy_uj here");
     sub->add_option("--json", o->json, "write every cell (cycles, phases, status) as JSON here");
     sub->add_option("--model", o->model, "model to run: " + model_names())->capture_default_str();
     sub->add_option("--seed", o->seed, "synthetic scene seed")->capture_default_str();
@@ -88,6 +91,7 @@ Subcommand register_table1(CLI::App& app) {
                         start_session(o->exec, "table1", sw::to_json(plan), plan.jobs, 0));
                 }
                 session->exec_keep = o->exec.keep;
+                plan.y = sw::Metric::Energy;  // the rows' energy beside their time
                 const sw::Result r = run_sweep_session(*session, plan, 1);
 
                 // The grid: rows width, columns D.
@@ -97,44 +101,59 @@ Subcommand register_table1(CLI::App& app) {
                         if (row.values[0] == ws && row.values[1] == std::to_string(d)) return &row;
                     return nullptr;
                 };
-                std::printf(
-                    "\nTable 1 on the modeled board: modeled ms per frame (256 PEs at 40 MHz, "
-                    "ROI height %d, bidir, vote on, model %s)\n",
-                    kHeight, plan.model.c_str());
                 const std::string note = " [paper " + fmt("%g", kPaperHeadlineMs) + "]";
                 auto emit = [](std::string line) {
                     line.erase(line.find_last_not_of(' ') + 1);
                     std::printf("%s\n", line.c_str());
                 };
-                std::string line = "ROI width";
-                for (int d : kLevels) {
-                    char b[64];
-                    std::snprintf(b, sizeof b, "  %9s%-*s", ("D=" + std::to_string(d)).c_str(),
-                                  static_cast<int>(note.size()), "");
-                    line += b;
-                }
-                emit(line);
-                for (int w : kWidths) {
-                    char b[64];
-                    std::snprintf(b, sizeof b, "%9d", w);
-                    line = b;
+                // One grid of `value` (a ran cell's text; the paper's figure
+                // beside the headline cell when `paper`).
+                auto grid = [&](const std::function<std::string(const sw::Row&)>& value,
+                                bool paper) {
+                    std::string line = "ROI width";
                     for (int d : kLevels) {
-                        std::string c, extra;
-                        if (d > w) {
-                            c = "-";
-                        } else if (const sw::Row* row = cell(w, d)) {
-                            c = row->ran() ? fmt("%.3f", row->run->modeled_ms)
-                                           : std::string(sw::status_name(row->status));
-                            if (w == 128 && d == 64) extra = note;
-                        } else {
-                            c = "not run";
-                        }
-                        std::snprintf(b, sizeof b, "  %9s%-*s", c.c_str(),
-                                      static_cast<int>(note.size()), extra.c_str());
+                        char b[64];
+                        std::snprintf(b, sizeof b, "  %9s%-*s", ("D=" + std::to_string(d)).c_str(),
+                                      static_cast<int>(note.size()), "");
                         line += b;
                     }
                     emit(line);
-                }
+                    for (int w : kWidths) {
+                        char b[64];
+                        std::snprintf(b, sizeof b, "%9d", w);
+                        line = b;
+                        for (int d : kLevels) {
+                            std::string c, extra;
+                            if (d > w) {
+                                c = "-";
+                            } else if (const sw::Row* row = cell(w, d)) {
+                                c = row->ran() ? value(*row)
+                                               : std::string(sw::status_name(row->status));
+                                if (paper && w == 128 && d == 64) extra = note;
+                            } else {
+                                c = "not run";
+                            }
+                            std::snprintf(b, sizeof b, "  %9s%-*s", c.c_str(),
+                                          static_cast<int>(note.size()), extra.c_str());
+                            line += b;
+                        }
+                        emit(line);
+                    }
+                };
+                std::printf(
+                    "\nTable 1 on the modeled board: modeled ms per frame (256 PEs at 40 MHz, "
+                    "ROI height %d, bidir, vote on, model %s)\n",
+                    kHeight, plan.model.c_str());
+                grid([](const sw::Row& row) { return fmt("%.3f", row.run->modeled_ms); }, true);
+                std::printf(
+                    "\nEnergy per frame (uJ) of the same cells ([A] 45 nm energy model, "
+                    "docs/energy.md)\n");
+                grid(
+                    [](const sw::Row& row) {
+                        return row.run->energy ? fmt("%.3f", row.run->energy->total_uj)
+                                               : std::string("-");
+                    },
+                    false);
                 std::printf(
                     "  '-': D > ROI width (not a valid cell). Headline cell: ROI 128x128, D=64; "
                     "the paper reports %g ms for it on the real board.\n",
@@ -142,7 +161,7 @@ Subcommand register_table1(CLI::App& app) {
 
                 if (!o->csv.empty()) {
                     std::ostringstream c;
-                    c << "width,D,modeled_ms,cycles,dominant_phase\n";
+                    c << "width,D,modeled_ms,cycles,dominant_phase,energy_uj\n";
                     for (int w : kWidths)
                         for (int d : kLevels) {
                             if (d > w) continue;
@@ -151,7 +170,11 @@ Subcommand register_table1(CLI::App& app) {
                             c << w << "," << d << ","
                               << (row->ran() ? fmt("%.6f", row->run->modeled_ms) : "") << ","
                               << (row->ran() ? std::to_string(row->run->cycles) : "") << ","
-                              << (row->ran() ? row->run->dominant_phase() : "") << "\n";
+                              << (row->ran() ? row->run->dominant_phase() : "") << ","
+                              << (row->ran() && row->run->energy
+                                      ? fmt("%.6f", row->run->energy->total_uj)
+                                      : "")
+                              << "\n";
                         }
                     imap::vision::write_text_atomic(o->csv, c.str());
                     std::printf("  csv -> %s\n", o->csv.c_str());
@@ -160,8 +183,10 @@ Subcommand register_table1(CLI::App& app) {
                     nlohmann::json j = sw::to_json(plan, r);
                     j["paper_headline_ms"] = kPaperHeadlineMs;
                     j["headline_cell"] = {{"width", 128}, {"D", 64}};
-                    if (const sw::Row* row = cell(128, 64); row && row->ran())
+                    if (const sw::Row* row = cell(128, 64); row && row->ran()) {
                         j["headline_modeled_ms"] = row->run->modeled_ms;
+                        if (row->run->energy) j["headline_energy_uj"] = row->run->energy->total_uj;
+                    }
                     imap::vision::write_text_atomic(o->json, j.dump(2) + "\n");
                     std::printf("  json -> %s\n", o->json.c_str());
                 }

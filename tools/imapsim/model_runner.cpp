@@ -352,6 +352,7 @@ std::string adopt_isa_events(isa::Stats& rtl, uint64_t rtl_cycles, const isa::St
     rtl.op_lanes = ref.op_lanes;
     rtl.ring_hops = ref.ring_hops;
     rtl.ext_bytes = ref.ext_bytes;
+    rtl.by_phase = ref.by_phase;  // the design does not split its counters by phase
     if (rtl.op_counts == ref.op_counts && rtl_cycles == ref_cycles) return who;
     std::fflush(stdout);
     std::fprintf(stderr,
@@ -550,7 +551,32 @@ Comparison compare_maps(const g::DisparityMap& got, const g::DisparityMap& want)
     return c;
 }
 
-nlohmann::json energy_json(const isa::EnergyReport& e, const std::string& source) {
+namespace {
+
+// The energy of each phase that ran (cycles or counted events), in program
+// order: the phase's counted events (Stats::by_phase) over its own cycles.
+// Empty when the model did not split its counts by phase.
+std::vector<std::pair<std::string, isa::EnergyReport>> phase_energies(
+    const ModelRun& run, const isa::MachineConfig& cfg) {
+    const fw::FrameResult& r = run.result;
+    std::vector<std::pair<std::string, isa::EnergyReport>> out;
+    if (r.stats.by_phase.empty()) return out;
+    const size_t n = std::max(r.stats.by_phase.size(), run.program.phases.size());
+    std::vector<uint64_t> cycles(n, 0);
+    for (size_t i = 0; i < n; ++i)
+        for (const auto& [name, cyc] : r.phases)
+            if (name == run.program.phase_name(static_cast<uint32_t>(i))) cycles[i] = cyc;
+    const std::vector<isa::EnergyReport> e = isa::energy_by_phase(r.stats, cycles, cfg);
+    for (size_t i = 0; i < e.size(); ++i)
+        if (e[i].total_pj > 0)
+            out.emplace_back(run.program.phase_name(static_cast<uint32_t>(i)), e[i]);
+    return out;
+}
+
+}  // namespace
+
+nlohmann::json energy_json(const isa::EnergyReport& e, const std::string& source,
+                           const std::vector<std::pair<std::string, isa::EnergyReport>>& phases) {
     nlohmann::json by = nlohmann::json::object();
     for (int i = 0; i < isa::kEnergyClassCount; ++i)
         by[isa::to_string(static_cast<isa::EnergyClass>(i))] = e.by_class_pj[size_t(i)] * 1e-6;
@@ -570,23 +596,40 @@ nlohmann::json energy_json(const isa::EnergyReport& e, const std::string& source
                                {"video_bytes", v.video_bytes},
                                {"cycles", v.cycles},
                                {"pes", v.pes}};
+    nlohmann::json ph = nlohmann::json::object();
+    for (const auto& [name, pe] : phases) ph[name] = pe.total_pj * 1e-6;
     return {{"total_uj", e.total_pj * 1e-6},
             {"dynamic_uj", e.dynamic_pj * 1e-6},
             {"static_uj", e.static_pj * 1e-6},
             {"power_mw", e.power_mw},
+            {"frame_rate_hz", e.frame_rate_hz},
+            {"power_camera_mw", e.power_camera_mw},
+            {"camera_keeps_up", e.keeps_up},
             {"by_class", by},
             {"events", ev},
-            {"events_source", source}};
+            {"events_source", source},
+            {"phases", ph}};
 }
 
 void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
-                  const std::string& source) {
+                  const std::string& source,
+                  const std::vector<std::pair<std::string, isa::EnergyReport>>& phases) {
     std::printf(
         "  energy: %.3f uJ per frame (dynamic %.3f, static %.3f), %.3f mW average over the "
         "frame's %.3f ms; [A] 45 nm table x energy_scale %g (docs/energy.md)%s%s\n",
         e.total_pj * 1e-6, e.dynamic_pj * 1e-6, e.static_pj * 1e-6, e.power_mw, e.seconds * 1e3,
         cfg.energy.energy_scale,
         source == "isa" ? "" : "; events: ", source == "isa" ? "" : source.c_str());
+    if (e.keeps_up)
+        std::printf(
+            "  power at the camera rate: %.3f mW at %g fps (every %.3f ms: the frame's %.3f ms, "
+            "then idle at the static %.3f mW; frame_rate_hz)\n",
+            e.power_camera_mw, e.frame_rate_hz, e.period_s * 1e3, e.seconds * 1e3, e.static_mw);
+    else
+        std::printf(
+            "  power at the camera rate: the frame takes %.3f ms > the camera period %.3f ms "
+            "(%g fps): cannot keep up; %.3f mW, the frame-time power (frame_rate_hz)\n",
+            e.seconds * 1e3, e.period_s * 1e3, e.frame_rate_hz, e.power_camera_mw);
     std::vector<std::pair<double, int>> order;
     for (int i = 0; i < isa::kEnergyClassCount; ++i)
         if (e.by_class_pj[size_t(i)] > 0) order.emplace_back(e.by_class_pj[size_t(i)], i);
@@ -602,6 +645,12 @@ void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
         line += buf;
     }
     std::printf("  energy by class: %s\n", line.empty() ? "-" : line.c_str());
+    if (phases.empty()) return;
+    std::printf("  energy by phase (each phase's counted events over its cycles):\n");
+    for (const auto& [name, pe] : phases)
+        std::printf("    %-14s %10.3f uJ  %5.1f%%  (dynamic %.3f, static %.3f)\n", name.c_str(),
+                    pe.total_pj * 1e-6, e.total_pj > 0 ? 100.0 * pe.total_pj / e.total_pj : 0.0,
+                    pe.dynamic_pj * 1e-6, pe.static_pj * 1e-6);
 }
 
 void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::MachineConfig& cfg,
@@ -653,7 +702,8 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
                 static_cast<unsigned long long>(r.relayout_out),
                 static_cast<long long>(r.relayout_bound_out));
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
-    print_energy(isa::energy_of(r.stats, r.cycles, cfg), cfg, run.energy_source);
+    print_energy(isa::energy_of(r.stats, r.cycles, cfg), cfg, run.energy_source,
+                 phase_energies(run, cfg));
     const std::string faster = faster_assumptions_text(cfg);
     if (!faster.empty())
         std::printf("  [A+] assumed, faster than the published facts (docs/isa.md 2.2): %s\n",
@@ -737,7 +787,8 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
-    j["energy"] = energy_json(isa::energy_of(r.stats, r.cycles, cfg), run.energy_source);
+    j["energy"] = energy_json(isa::energy_of(r.stats, r.cycles, cfg), run.energy_source,
+                              phase_energies(run, cfg));
 #ifdef IMAPSIM_HAVE_RTL
     // Silicon of this machine configuration: the design's PE and CP as
     // synthesized by yosys, scaled to cfg (docs/rtl.md, "Synthesis"); a

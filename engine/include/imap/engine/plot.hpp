@@ -19,6 +19,10 @@ struct Series {
     // The bound of another series (its index): drawn as a dashed line in
     // that series' colour, without points.
     int bound_of = -1;
+    // Points without lines (a scatter). `size`, when it has one value per
+    // point, is each point's size (gnuplot `ps variable`, third data column).
+    bool scatter = false;
+    std::vector<double> size{};
 };
 
 struct HLine {
@@ -44,11 +48,13 @@ struct Figure {
     std::vector<HLine> hlines;  // drawn dashed, included in the y range
     std::vector<Annotation> annotations;
     std::string note;  // top-left corner of the plot area
+    std::string key;   // gnuplot `set key` placement ("below", ...); empty: automatic
     int width = 900, height = 600;
 };
 
 // The data file of a figure: one gnuplot data block per series ("x y" lines,
-// blocks separated by two blank lines, each headed by a comment naming it).
+// "x y size" for a scatter with sizes; blocks separated by two blank lines,
+// each headed by a comment naming it).
 std::string data_text(const Figure& f);
 // The gnuplot script: reads `data_name`, writes `out_name` with the terminal
 // of its extension (.png: pngcairo, .svg: svg); both may be overridden with

@@ -100,6 +100,18 @@ struct Row {
     double fps() const { return ran() && run->modeled_ms > 0 ? 1000.0 / run->modeled_ms : 0.0; }
 };
 
+// The quantity `--y` chooses: the column the table adds (and the summary's
+// best point) and the plot's y axis. Time is the default (the table and
+// plot as they always were).
+enum class Metric { Time, Energy, Power, Edp, Area };
+inline constexpr const char* kMetricNames = "time, energy, power, edp, area";
+const char* metric_name(Metric m);                             // "time", "energy", ...
+std::optional<Metric> metric_from_name(const std::string& s);  // nullopt if unknown
+// The metric's value for a row that ran: modeled ms, energy per frame (uJ),
+// average power over the frame (mW), energy x delay (uJ x ms) or area
+// (cells); NaN when the row has none (not run, no energy or area reported).
+double metric_value(const Row& r, Metric m);
+
 // Every point planned: the rows that are answers already, the jobs to run.
 struct Plan {
     std::string command = "sweep", model = "tlm";
@@ -111,6 +123,9 @@ struct Plan {
     std::vector<std::string> phase_names;                    // program order
     std::vector<Row> rows;                                   // one per point, in point order
     std::vector<Job> jobs;  // the runnable points (none with dry_run)
+    // What the table highlights (--y): a display choice, not saved with the
+    // plan (a resumed sweep takes the --y of its own command line).
+    Metric y = Metric::Time;
 };
 
 // Plans every point in-process (engine::Error for an invalid Spec).
@@ -177,16 +192,31 @@ std::vector<Knee> find_knees(const Plan& p, const std::vector<Row>& rows, size_t
 // CSV: one column per swept axis, cycles, modeled_ms, fps, status, message,
 // bit_exact, wall_s, local_bytes_per_pe, ext_bytes_per_pe, dominant_phase,
 // dominant_share, area_cells, area_memory_bits (empty unless the model
-// reports its area), one column per phase (phase_<name>). An interrupted
-// sweep ends with one row of status "sweep-interrupted".
+// reports its area), one column per phase (phase_<name>), bound_cycles,
+// efficiency, bound_<name> per bounded phase, energy_uj, power_mw, edp
+// (uJ x ms). An interrupted sweep ends with one row of status
+// "sweep-interrupted".
 std::string to_csv(const Plan& p, const Result& r);
 // JSON: the same rows, the swept and fixed parameters, the knees, the summary.
 nlohmann::json to_json(const Plan& p, const Result& r);
 
-// The plot of modeled frame time against swept axis `x_axis`, one series per
-// combination of the other swept axes, real-time lines, knees annotated.
-// Returns false (nothing to draw) when no point ran bit-exact.
+// The plot of the plan's metric (Plan::y; default modeled frame time)
+// against swept axis `x_axis`, one series per combination of the other swept
+// axes; for time, the real-time lines, the machine's bound and the knees.
+// Returns false (nothing to draw) when no point ran bit-exact with a value.
 bool make_figure(const Plan& p, const Result& r, size_t x_axis, plot::Figure* f);
+
+// Pareto view (--pareto): the rows that ran bit-exact with an energy, and of
+// them the Pareto-optimal ones by modeled time and energy per frame: no other
+// such row is at most as slow and uses at most as much energy while being
+// better in one of the two. Indices into `rows`, in row order.
+std::vector<size_t> pareto_rows(const std::vector<Row>& rows);
+// The text listing: a heading line and one line per Pareto-optimal point.
+std::vector<std::string> pareto_lines(const Plan& p, const Result& r);
+// Time against energy, one point per design point (point size by area when
+// every point has one, otherwise a note says so), the Pareto-optimal points
+// circled, labelled and joined. False when no point ran with an energy.
+bool make_pareto_figure(const Plan& p, const Result& r, plot::Figure* f);
 
 // CSV field quoting (RFC 4180).
 std::string csv_field(const std::string& s);

@@ -41,6 +41,7 @@ struct EnergyTable {
     double s_pe_leak_uw = 2.0;      // leakage of one PE (uW; not scaled by energy_scale)
     double s_cp_leak_uw = 20.0;     // leakage of the CP (uW; not scaled by energy_scale)
     double energy_scale = 1.0;      // technology factor on every pJ figure (1 = 45 nm)
+    double frame_rate_hz = 30.0;    // the camera's frame rate (power at the camera rate)
 
     struct Field {
         const char* name;
@@ -48,6 +49,7 @@ struct EnergyTable {
         double min, max;
         const char* unit;
         const char* doc;
+        bool min_exclusive = false;  // the range excludes min (allowed: > min)
     };
     static const std::vector<Field>& fields();
     static bool has(std::string_view name);
@@ -109,8 +111,26 @@ struct EnergyReport {
     double dynamic_pj = 0, static_pj = 0, total_pj = 0;
     double seconds = 0;   // the run's modeled time
     double power_mw = 0;  // total / seconds
+    // At the camera's rate (EnergyTable::frame_rate_hz): a frame every
+    // period; the machine runs the frame, then idles at its static power
+    // (clock tree and leakage: static / seconds) until the next one, so
+    // power_camera_mw = (total + static power x (period - seconds)) / period.
+    // When the frame takes longer than the period (!keeps_up) the camera's
+    // rate cannot be met: power_camera_mw = power_mw.
+    double frame_rate_hz = 0;
+    double period_s = 0;   // 1 / frame_rate_hz
+    double static_mw = 0;  // static / seconds (0 for a run of no time)
+    bool keeps_up = true;  // seconds <= period_s
+    double power_camera_mw = 0;
 };
 // Energy of a run of `cycles` with statistics `s` on configuration `cfg`.
 EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg);
+
+// Energy of each phase of a run (index = phase id, as Stats::by_phase and
+// Machine::phase_cycles): the phase's counted events over its own cycles, so
+// that the phases add up to energy_of(s, sum of phase_cycles, cfg). Size:
+// the larger of s.by_phase and phase_cycles (a missing entry counts zero).
+std::vector<EnergyReport> energy_by_phase(const Stats& s, const std::vector<uint64_t>& phase_cycles,
+                                          const MachineConfig& cfg);
 
 }  // namespace imap::isa

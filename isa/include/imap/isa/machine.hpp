@@ -178,10 +178,22 @@ struct Stats {
     std::array<uint64_t, 256> op_lanes{};
     uint64_t ring_hops = 0;
     uint64_t ext_bytes = 0;
+    // The counts above split by phase (index = Program::phases index; the
+    // entries' own by_phase are empty): they add up to the totals. Empty
+    // when the model that ran does not split them (the RTL's counters), or
+    // when a program enters so many phases that the executor stopped
+    // splitting (Machine::kMaxPhaseSplitEntries).
+    std::vector<Stats> by_phase;
 };
 
 class Machine {
   public:
+    // The executor keeps its counts by PC once per phase the program enters
+    // (Stats::by_phase), up to this many entries in all (phases x program
+    // size, 16 bytes each); a program that would need more keeps its totals
+    // and gives no split.
+    static constexpr size_t kMaxPhaseSplitEntries = size_t{1} << 22;
+
     // Validates the configuration (ConfigError) and allocates the state.
     explicit Machine(const MachineConfig& cfg);
     Machine(const Machine&) = delete;
@@ -303,6 +315,18 @@ class Machine {
     void exec_run(uint32_t start, uint64_t limit);
     void book_partial_run(uint32_t start, uint32_t stop, uint64_t start_cycles, uint64_t active,
                           uint32_t phase);
+    // The running totals the handlers keep, for the split by phase.
+    struct Running {
+        uint64_t instructions = 0, pe_cycles = 0, active_lane_cycles = 0, ext_bytes = 0;
+        std::array<uint64_t, kCostClassCount> class_extra{};
+    };
+    Running running() const;
+    // A `phase` marker left phase `old` for phase_: the running totals since
+    // the last change go to `old`, the counts by PC to phase_'s row. O(1).
+    void change_phase(uint32_t old);
+    void select_phase_row();  // exec_diff_ / lane_diff_ = phase_'s row
+    // Adds the counts of difference-array row `r` to `s` (O(program size)).
+    void add_row(Stats& s, size_t r) const;
     [[noreturn]] void fault(const std::string& msg, int64_t pe = Fault::kNone,
                             int64_t address = Fault::kNone) const;
     void recount_active();
@@ -347,13 +371,20 @@ class Machine {
 
     // Statistics as the run loop keeps them: executions by PC as a
     // difference array (a run from s to e adds 1 at s, -1 at e + 1; the
-    // active PE count likewise in lane_diff_), the
+    // active PE count likewise in lane_diff_), one row per phase entered
+    // (exec_diff_ / lane_diff_ point at the current phase's), the
     // variable cycles by cost class, and the running totals.
-    std::vector<int64_t> exec_diff_;
-    std::vector<uint64_t> lane_diff_;  // active PEs by PC, as a difference array (mod 2^64)
+    std::vector<std::vector<int64_t>> exec_rows_;
+    std::vector<std::vector<uint64_t>> lane_rows_;  // active PEs by PC (mod 2^64)
+    std::vector<int32_t> row_of_phase_;             // -1: not entered since load
+    bool phase_split_ = true;  // false: a phase shares row 0 (over kMaxPhaseSplitEntries)
+    int64_t* exec_diff_ = nullptr;
+    uint64_t* lane_diff_ = nullptr;
     uint64_t ext_bytes_ = 0;
     std::array<uint64_t, kCostClassCount> class_extra_{};
     uint64_t instructions_ = 0, pe_cycles_ = 0, active_lane_cycles_ = 0;
+    std::vector<Running> phase_running_;  // each phase's share of the running totals
+    Running phase_mark_;                  // running() at the last phase change
     mutable Stats stats_;
 
     VideoPort* video_ = nullptr;
