@@ -223,6 +223,8 @@ void MachineConfig::set_one(std::string_view name, std::string_view value) {
         if (v.empty() || errno != 0 || *end != '\0' || !(d > 0.0) || d > 100000.0)
             bad(name, "'" + v + "'", "a number > 0 and <= 100000");
         clock_mhz = d;
+    } else if (name == "tech") {
+        energy.apply_preset(value);
     } else if (EnergyTable::has(name) || BoardTiming::has(name)) {
         errno = 0;
         char* end = nullptr;

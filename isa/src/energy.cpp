@@ -118,8 +118,57 @@ void EnergyTable::validate() const {
     }
 }
 
+const std::vector<EnergyTable::Preset>& EnergyTable::presets() {
+    // The external memory of the older nodes: a 3.3 V PC100-class SDRAM
+    // (typical datasheet currents of a 64 Mbit x16 part, not one product):
+    // burst read/write ~150 mA x 3.3 V at 200 MB/s = 2.5 nJ per byte; a row
+    // cycle ~110 mA x 3.3 V over tRC ~70 ns = 25 nJ per transfer.
+    static const std::vector<Preset> p = {
+        {"45nm", "Horowitz, ISSCC 2014 (the defaults)", {}},
+        {"350nm",
+         "45 nm x (350/45) x (3.3 V / 1.0 V)^2 = 85 on chip, no leakage; PC100-class SDRAM",
+         {{"energy_scale", 85},
+          {"s_pe_leak_uw", 0},
+          {"s_cp_leak_uw", 0},
+          {"e_ext_byte_pj", 2500},
+          {"e_ext_xfer_pj", 25000}}},
+        {"500nm",
+         "45 nm x (500/45) x (3.3 V / 1.0 V)^2 = 121 on chip, no leakage; PC100-class SDRAM",
+         {{"energy_scale", 121},
+          {"s_pe_leak_uw", 0},
+          {"s_cp_leak_uw", 0},
+          {"e_ext_byte_pj", 2500},
+          {"e_ext_xfer_pj", 25000}}},
+    };
+    return p;
+}
+
+std::string EnergyTable::preset_names() {
+    std::string s;
+    for (const Preset& p : presets()) s += (s.empty() ? "" : "|") + std::string(p.name);
+    return s;
+}
+
+void EnergyTable::apply_preset(std::string_view name) {
+    for (const Preset& p : presets()) {
+        if (name != p.name) continue;
+        const EnergyTable base;
+        for (const Field& f : fields())
+            if (f.ptr != &EnergyTable::frame_rate_hz) this->*f.ptr = base.*f.ptr;
+        for (const auto& [n, v] : p.values) set(n, v);
+        tech = p.name;
+        return;
+    }
+    throw ConfigError("invalid value '" + std::string(name) + "' for tech: allowed " +
+                      preset_names());
+}
+
 std::vector<ParamInfo> EnergyTable::list() const {
     std::vector<ParamInfo> out;
+    out.push_back({"tech", tech, preset_names(), "", "energy",
+                   "technology preset the energies start from (docs/energy.md 4); parameters "
+                   "set after it override it",
+                   true, false});
     for (const Field& f : fields())
         out.push_back({f.name, num(this->*f.ptr),
                        range_of(f) + (f.min_exclusive ? " (exclusive of " + num(f.min) + ")" : ""),
@@ -241,6 +290,33 @@ std::vector<EnergyReport> energy_by_phase(const Stats& s, const std::vector<uint
     for (size_t i = 0; i < n; ++i)
         out.push_back(energy_of(i < s.by_phase.size() ? s.by_phase[i] : none,
                                 i < phase_cycles.size() ? phase_cycles[i] : 0, cfg));
+    return out;
+}
+
+}  // namespace imap::isa
+
+namespace imap::isa {
+
+std::vector<EnergySensitivity> energy_tornado(const Stats& s, uint64_t cycles,
+                                              const MachineConfig& cfg, double factor) {
+    std::vector<EnergySensitivity> out;
+    for (const EnergyTable::Field& f : EnergyTable::fields()) {
+        if (f.ptr == &EnergyTable::frame_rate_hz) continue;
+        EnergySensitivity e;
+        e.name = f.name;
+        MachineConfig c = cfg;
+        const double v = cfg.energy.*f.ptr;
+        // clamped to the field's range (energy_scale stays above its minimum)
+        c.energy.*f.ptr = std::max(f.min, v / factor);
+        e.low_pj = energy_of(s, cycles, c).total_pj;
+        c.energy.*f.ptr = std::min(f.max, v * factor);
+        e.high_pj = energy_of(s, cycles, c).total_pj;
+        out.push_back(e);
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const EnergySensitivity& a, const EnergySensitivity& b) {
+                         return a.high_pj - a.low_pj > b.high_pj - b.low_pj;
+                     });
     return out;
 }
 

@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(every_parameter_is_listed_with_docs) {
     c.costs.ring_hop = 5;
     const std::vector<ParamInfo> l = c.list();
     BOOST_CHECK_EQUAL(l.size(), 9u + CostTable::fields().size() + BoardTiming::fields().size() +
-                                    EnergyTable::fields().size());
+                                    1u /* tech */ + EnergyTable::fields().size());
     for (const ParamInfo& p : l) {
         BOOST_CHECK(!p.name.empty());
         BOOST_CHECK(!p.doc.empty());

@@ -354,3 +354,63 @@ BOOST_AUTO_TEST_CASE(every_energy_parameter_is_range_checked_by_name) {
     MachineConfig c;
     BOOST_CHECK_THROW(c.set("e_nothing_pj", "1"), ConfigError);
 }
+
+// Technology presets (docs/energy.md section 4): a preset sets what it names
+// (the rule's factor worked out here), resets the rest to the 45 nm values,
+// later settings override it, the camera rate stays, and an unknown name is
+// refused with the list.
+BOOST_AUTO_TEST_CASE(technology_presets) {
+    MachineConfig c;
+    BOOST_TEST(c.energy.tech == "45nm");
+    c.set("e_alu_pj", "0.5");
+    c.set("frame_rate_hz", "25");
+    c.set("tech", "350nm");
+    BOOST_TEST(c.energy.tech == "350nm");
+    BOOST_TEST(std::fabs(c.energy.energy_scale - 350.0 / 45.0 * 3.3 * 3.3) < 0.5);
+    BOOST_TEST(c.energy.s_pe_leak_uw == 0.0);
+    BOOST_TEST(c.energy.e_ext_byte_pj == 2500.0);
+    BOOST_TEST(c.energy.e_alu_pj == EnergyTable().e_alu_pj);  // reset to the 45 nm value
+    BOOST_TEST(c.energy.frame_rate_hz == 25.0);               // not a technology figure
+    c.set("energy_scale", "60");                              // overrides the preset
+    BOOST_TEST(c.energy.energy_scale == 60.0);
+    c.set("tech", "500nm");
+    BOOST_TEST(std::fabs(c.energy.energy_scale - 500.0 / 45.0 * 3.3 * 3.3) < 0.5);
+    c.set("tech", "45nm");
+    BOOST_TEST(c.energy.energy_scale == 1.0);
+    BOOST_TEST(c.energy.s_pe_leak_uw == EnergyTable().s_pe_leak_uw);
+    try {
+        c.set("tech", "7nm");
+        BOOST_ERROR("accepted 7nm");
+    } catch (const ConfigError& e) {
+        BOOST_TEST(std::string(e.what()).find("allowed 45nm|350nm|500nm") != std::string::npos);
+    }
+    // the run's dynamic on-chip energy scales by the preset's factor
+    auto m = run(kMasked, small(4));
+    MachineConfig old = small(4);
+    old.set("tech", "350nm");
+    const EnergyReport a = energy_of(m->stats(), m->cycles(), small(4));
+    const EnergyReport b = energy_of(m->stats(), m->cycles(), old);
+    const size_t alu = static_cast<size_t>(EnergyClass::Alu);
+    BOOST_TEST(std::fabs(b.by_class_pj[alu] / a.by_class_pj[alu] - 85.0) < 1e-9);
+}
+
+// The tornado: each parameter's energies at x0.5 and x2 move the total by
+// what that parameter's events cost (the ALU's 11 lanes of kMasked, counted
+// by hand above: (2 - 0.5) x 0.03 pJ x 11), sorted by spread, every energy
+// parameter but the camera rate listed once.
+BOOST_AUTO_TEST_CASE(tornado_moves_the_total_by_each_parameters_events) {
+    auto m = run(kMasked, small(4));
+    const MachineConfig c = small(4);
+    const std::vector<EnergySensitivity> t = energy_tornado(m->stats(), m->cycles(), c);
+    BOOST_TEST(t.size() == EnergyTable::fields().size() - 1);
+    const double total = energy_of(m->stats(), m->cycles(), c).total_pj;
+    for (size_t i = 0; i < t.size(); ++i) {
+        BOOST_TEST_INFO(t[i].name);
+        BOOST_TEST(t[i].name != "frame_rate_hz");
+        BOOST_TEST(t[i].low_pj <= total + 1e-9);
+        BOOST_TEST(t[i].high_pj >= total - 1e-9);
+        if (i > 0) BOOST_TEST(t[i - 1].high_pj - t[i - 1].low_pj >= t[i].high_pj - t[i].low_pj);
+        if (t[i].name == "e_alu_pj")
+            BOOST_TEST(std::fabs(t[i].high_pj - t[i].low_pj - 1.5 * 0.03 * 11) < 1e-9);
+    }
+}

@@ -36,6 +36,17 @@ std::pair<fw::FrameResult, rtl::LockstepResult> lockstep_frame(
     return {std::move(core), std::move(r)};
 }
 
+// The spilling frame: single mode, 6 lines of a 96-wide ROI at D = 90.
+struct SpillFrame {
+    g::Params p;
+    Frame frame;
+    g::Roi roi{2, 1, 96, 6};
+    SpillFrame() : frame(random_frame(RTL_TEST_SEED, 100, 8, 90)) {
+        p.mode = g::Mode::Single;
+        p.D = 90;
+    }
+};
+
 }  // namespace
 
 #if RTL_TEST_SPILL && !RTL_TEST_BOARD
@@ -47,11 +58,10 @@ BOOST_AUTO_TEST_CASE(lockstep_passes_on_masked_spills) {
     // PEs move). Both models agree at every instruction, bit-exact, and the
     // spill phase costs less than its transfers would with every PE's bytes.
     const int P = 16;
-    g::Params p;
-    p.mode = g::Mode::Single;
-    p.D = 90;
-    const Frame frame = random_frame(RTL_TEST_SEED, 100, 8, p.D);
-    const g::Roi roi{2, 1, 96, 6};
+    const SpillFrame s;
+    const g::Params& p = s.p;
+    const Frame& frame = s.frame;
+    const g::Roi& roi = s.roi;
     isa::MachineConfig cfg;
     cfg.pes = P;
     const fw::FramePlan plan = fw::plan_frame(p, roi, cfg);
@@ -83,11 +93,10 @@ BOOST_AUTO_TEST_CASE(lockstep_passes_with_board_timing) {
     // 5 MHz pixel clock whose lines arrive while the program runs: the RTL's
     // transfer engine beats and its vin waits as the instruction-set model
     // charges them, at every instruction.
-    g::Params p;
-    p.mode = g::Mode::Single;
-    p.D = 90;
-    const Frame frame = random_frame(RTL_TEST_SEED, 100, 8, p.D);
-    const g::Roi roi{2, 1, 96, 6};
+    const SpillFrame s;
+    const g::Params& p = s.p;
+    const Frame& frame = s.frame;
+    const g::Roi& roi = s.roi;
     isa::MachineConfig cfg;
     cfg.set("pes", "16");
     cfg.set("clock_mhz", "300");

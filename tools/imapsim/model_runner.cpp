@@ -616,9 +616,9 @@ void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
                   const std::vector<std::pair<std::string, isa::EnergyReport>>& phases) {
     std::printf(
         "  energy: %.3f uJ per frame (dynamic %.3f, static %.3f), %.3f mW average over the "
-        "frame's %.3f ms; [A] 45 nm table x energy_scale %g (docs/energy.md)%s%s\n",
+        "frame's %.3f ms; [A] tech %s, energy_scale %g (docs/energy.md)%s%s\n",
         e.total_pj * 1e-6, e.dynamic_pj * 1e-6, e.static_pj * 1e-6, e.power_mw, e.seconds * 1e3,
-        cfg.energy.energy_scale,
+        cfg.energy.tech.c_str(), cfg.energy.energy_scale,
         source == "isa" ? "" : "; events: ", source == "isa" ? "" : source.c_str());
     if (e.keeps_up)
         std::printf(
@@ -651,6 +651,31 @@ void print_energy(const isa::EnergyReport& e, const isa::MachineConfig& cfg,
         std::printf("    %-14s %10.3f uJ  %5.1f%%  (dynamic %.3f, static %.3f)\n", name.c_str(),
                     pe.total_pj * 1e-6, e.total_pj > 0 ? 100.0 * pe.total_pj / e.total_pj : 0.0,
                     pe.dynamic_pj * 1e-6, pe.static_pj * 1e-6);
+}
+
+// The energy parameters with the most influence: the frame's energy with
+// each one halved and doubled (isa::energy_tornado), as % of the frame's.
+void print_tornado(const std::vector<isa::EnergySensitivity>& t, size_t top) {
+    if (t.empty()) return;
+    // the total as set: halving then doubling a parameter brackets it
+    std::string line;
+    for (size_t i = 0; i < t.size() && i < top; ++i) {
+        if (t[i].high_pj - t[i].low_pj <= 0) break;
+        char b[96];
+        std::snprintf(b, sizeof b, "%s%s %.3f..%.3f uJ", line.empty() ? "" : ", ",
+                      t[i].name.c_str(), t[i].low_pj * 1e-6, t[i].high_pj * 1e-6);
+        line += b;
+    }
+    std::printf("  energy parameters with the most influence (each x0.5 .. x2): %s\n",
+                line.empty() ? "-" : line.c_str());
+}
+
+nlohmann::json tornado_json(const std::vector<isa::EnergySensitivity>& t) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const isa::EnergySensitivity& e : t)
+        a.push_back(
+            {{"name", e.name}, {"half_uj", e.low_pj * 1e-6}, {"double_uj", e.high_pj * 1e-6}});
+    return a;
 }
 
 void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::MachineConfig& cfg,
@@ -704,6 +729,7 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
     print_energy(isa::energy_of(r.stats, r.cycles, cfg), cfg, run.energy_source,
                  phase_energies(run, cfg));
+    print_tornado(isa::energy_tornado(r.stats, r.cycles, cfg), 6);
     const std::string faster = faster_assumptions_text(cfg);
     if (!faster.empty())
         std::printf("  [A+] assumed, faster than the published facts (docs/isa.md 2.2): %s\n",
@@ -789,6 +815,8 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));
     j["energy"] = energy_json(isa::energy_of(r.stats, r.cycles, cfg), run.energy_source,
                               phase_energies(run, cfg));
+    j["energy"]["tech"] = cfg.energy.tech;
+    j["energy"]["tornado"] = tornado_json(isa::energy_tornado(r.stats, r.cycles, cfg));
 #ifdef IMAPSIM_HAVE_RTL
     // Silicon of this machine configuration: the design's PE and CP as
     // synthesized by yosys, scaled to cfg (docs/rtl.md, "Synthesis"); a

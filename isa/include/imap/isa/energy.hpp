@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace imap::isa {
@@ -42,6 +43,7 @@ struct EnergyTable {
     double s_cp_leak_uw = 20.0;     // leakage of the CP (uW; not scaled by energy_scale)
     double energy_scale = 1.0;      // technology factor on every pJ figure (1 = 45 nm)
     double frame_rate_hz = 30.0;    // the camera's frame rate (power at the camera rate)
+    std::string tech = "45nm";      // the preset the values started from (docs/energy.md 4)
 
     struct Field {
         const char* name;
@@ -60,6 +62,19 @@ struct EnergyTable {
     double get(std::string_view name) const;
     void validate() const;
     std::vector<ParamInfo> list() const;
+
+    // Technology presets (docs/energy.md section 4): a preset sets the
+    // fields it names from the 45 nm defaults; the others keep their default
+    // values. Parameters set after it override it. ConfigError for an
+    // unknown name (the message lists the presets).
+    struct Preset {
+        const char* name;
+        const char* source;
+        std::vector<std::pair<const char*, double>> values;
+    };
+    static const std::vector<Preset>& presets();
+    static std::string preset_names();  // "45nm|350nm|500nm"
+    void apply_preset(std::string_view name);
 };
 
 // What a run did, in the units the energies are given in.
@@ -125,6 +140,17 @@ struct EnergyReport {
 };
 // Energy of a run of `cycles` with statistics `s` on configuration `cfg`.
 EnergyReport energy_of(const Stats& s, uint64_t cycles, const MachineConfig& cfg);
+
+// The energy parameters' influence (a tornado): the frame's total energy
+// with each parameter divided and multiplied by `factor`, the others as
+// set; sorted by the spread (high - low), largest first. frame_rate_hz
+// (no effect on the frame's energy) is left out.
+struct EnergySensitivity {
+    std::string name;
+    double low_pj = 0, high_pj = 0;  // total with the parameter / factor and x factor
+};
+std::vector<EnergySensitivity> energy_tornado(const Stats& s, uint64_t cycles,
+                                              const MachineConfig& cfg, double factor = 2.0);
 
 // Energy of each phase of a run (index = phase id, as Stats::by_phase and
 // Machine::phase_cycles): the phase's counted events over its own cycles, so
