@@ -360,6 +360,38 @@ BOOST_AUTO_TEST_CASE(knee_is_found_and_explained) {
     }
 }
 
+// Issue 29 item 1: a clock sweep of a bandwidth-bound frame (pointers spilled
+// over an external path of 30 MB/s and one byte per cycle) has its knee at
+// the clock the parameters predict, ext_mb_s / ext_bus_bytes (computed here,
+// docs/isa.md 2.4): below it the bus width limits the path and the frame's
+// time halves with each doubling; above it the bandwidth does and the spill's
+// cycles grow with the clock. The explanation names the spill.
+BOOST_AUTO_TEST_CASE(bandwidth_bound_clock_sweep_has_its_knee_where_predicted) {
+    const double mb_s = 30, bus = 1, predicted = mb_s / bus;
+    std::string clocks;
+    for (int k = -2; k <= 3; ++k)
+        clocks += (clocks.empty() ? "" : ",") + std::to_string(predicted * std::pow(2.0, k));
+    const fs::path d = tmpdir();
+    const fs::path js = d / "clock.json";
+    const Result r =
+        run("sweep --model core --roi-size 128x128 --D 64 --mem-bytes 384 --set "
+            "ext_mb_s=30 --set ext_bus_bytes=1 --clock-mhz " +
+            clocks + " -j 2 --json " + js.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    std::ifstream in(js);
+    const json j = json::parse(in);
+    const json& knees = j.at("knees");
+    BOOST_REQUIRE_EQUAL(knees.size(), 1u);
+    const json& k = knees[0];
+    double at = 0;
+    BOOST_REQUIRE(std::sscanf(k.at("at").get<std::string>().c_str(), "%lf", &at) == 1);
+    BOOST_TEST(std::fabs(at - predicted) < 1e-6);
+    BOOST_TEST(k.at("phase_after").get<std::string>() == "spill");
+    BOOST_TEST(r.out.find("knee at clock_mhz=") != std::string::npos);
+    fs::remove_all(d);
+}
+
 BOOST_AUTO_TEST_CASE(range_syntax) {
     const fs::path d = tmpdir();
     const fs::path csv = d / "ranges.csv";
