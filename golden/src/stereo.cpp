@@ -75,44 +75,13 @@ struct Line {
     // is the A.3 tie order: M, then D if strictly smaller, then O if
     // strictly smaller.
     C right(std::vector<C>& prev, std::vector<C>& cur, int first, int last, uint8_t* tab) const {
-        constexpr C kInf = CostTraits<C>::kInf;
         for (int i = first; i <= last; ++i) {
             const int jm = top(i);
             uint8_t* bp = tab + static_cast<size_t>(i - first) * D;
             const C* pv = prev.data();
             C* cv = cur.data();
-            if constexpr (kTable) {
-                const C* cr = cost + static_cast<size_t>(i) * D;
-                for (int j = 0; j <= jm; ++j) {
-                    const C m = pv[j] + cr[j];
-                    const C d = pv[j + 1] + Wd;
-                    const bool take_d = d < m;
-                    cv[j] = take_d ? d : m;
-                    bp[j] = take_d ? kD : kM;
-                }
-            } else {
-                const uint8_t* lp = L + i;
-                const int a = R[i];
-                for (int j = 0; j <= jm; ++j) {
-                    const C m = pv[j] + wm(a, lp[j]);
-                    const C d = pv[j + 1] + Wd;
-                    const bool take_d = d < m;
-                    cv[j] = take_d ? d : m;
-                    bp[j] = take_d ? kD : kM;
-                }
-            }
-            C run = cv[0];
-            for (int j = 1; j <= jm; ++j) {
-                const C o = run + Wo;
-                const C c = cv[j];
-                const bool take_o = o < c;
-                run = take_o ? o : c;
-                cv[j] = run;
-                bp[j] = take_o ? uint8_t{kO} : bp[j];
-            }
-            mark_unreachable(cv, bp, jm);
-            for (int j = jm + 1; j < D; ++j) bp[j] = kNone;
-            std::fill(cur.begin() + jm + 1, cur.end(), kInf);
+            match_diag(pv, pv + 1, i, jm, cv, bp);  // E(i-1, j) + Wm(i, j), E(i-1, j+1) + Wd
+            close_column<+1>(cv, bp, jm, cur);
             prev.swap(cur);
         }
         return prev[0];
@@ -125,52 +94,70 @@ struct Line {
     // decreasing j. Returns G(lo, 0); next holds G(lo, j) afterwards.
     C left(std::vector<C>& next, std::vector<C>& cur, int hi, int lo, uint8_t* tab,
            int tab_first) const {
-        constexpr C kInf = CostTraits<C>::kInf;
         for (int i = hi - 1; i >= lo; --i) {
             const int jm = i < 0 ? D - 1 : top(i);
             uint8_t* fp = tab + static_cast<size_t>(i - tab_first) * D;
             const C* nv = next.data();
             C* cv = cur.data() + 1;                     // cv[j] = G(i, j)
             const int jm_m = std::min(jm, top(i + 1));  // M needs (i+1, j) valid
-            if constexpr (kTable) {
-                const C* cr = cost + static_cast<size_t>(i + 1) * D;
-                for (int j = 0; j <= jm_m; ++j) {
-                    const C m = nv[j + 1] + cr[j];  // G(i+1, j) + Wm(i+1, j)
-                    const C d = nv[j] + Wd;         // G(i+1, j-1) + Wd
-                    const bool take_d = d < m;
-                    cv[j] = take_d ? d : m;
-                    fp[j] = take_d ? kD : kM;
-                }
-            } else {
-                const int a = R[i + 1];
-                const uint8_t* lp = L + i + 1;
-                for (int j = 0; j <= jm_m; ++j) {
-                    const C m = nv[j + 1] + wm(a, lp[j]);  // G(i+1, j) + Wm(i+1, j)
-                    const C d = nv[j] + Wd;                // G(i+1, j-1) + Wd
-                    const bool take_d = d < m;
-                    cv[j] = take_d ? d : m;
-                    fp[j] = take_d ? kD : kM;
-                }
-            }
+            // G(i+1, j) + Wm(i+1, j), G(i+1, j-1) + Wd
+            match_diag(nv + 1, nv, i + 1, jm_m, cv, fp);
             if (jm > jm_m) {  // top level: M would leave the valid states, D only
                 cv[jm] = nv[jm] + Wd;
                 fp[jm] = kD;
             }
-            C run = cv[jm];
-            for (int j = jm - 1; j >= 0; --j) {
-                const C o = run + Wo;  // G(i, j+1) + Wo
-                const C c = cv[j];
-                const bool take_o = o < c;
-                run = take_o ? o : c;
-                cv[j] = run;
-                fp[j] = take_o ? uint8_t{kO} : fp[j];
-            }
-            mark_unreachable(cv, fp, jm);
-            for (int j = jm + 1; j < D; ++j) fp[j] = kNone;
-            std::fill(cur.begin() + jm + 2, cur.end(), kInf);
+            close_column<-1>(cv, fp, jm, cur);
             next.swap(cur);
         }
         return next[1];
+    }
+
+    // The M / D pass of a column: cv[j] = min(mp[j] + Wm(site, j), dp[j] + Wd)
+    // for j = 0..jm (M on ties), the winner in ptr[j].
+    void match_diag(const C* mp, const C* dp, int site, int jm, C* cv, uint8_t* ptr) const {
+        if constexpr (kTable) {
+            const C* cr = cost + static_cast<size_t>(site) * D;
+            for (int j = 0; j <= jm; ++j) {
+                const C m = mp[j] + cr[j];
+                const C d = dp[j] + Wd;
+                const bool take_d = d < m;
+                cv[j] = take_d ? d : m;
+                ptr[j] = take_d ? kD : kM;
+            }
+        } else {
+            const uint8_t* lp = L + site;
+            const int a = R[site];
+            for (int j = 0; j <= jm; ++j) {
+                const C m = mp[j] + wm(a, lp[j]);
+                const C d = dp[j] + Wd;
+                const bool take_d = d < m;
+                cv[j] = take_d ? d : m;
+                ptr[j] = take_d ? kD : kM;
+            }
+        }
+    }
+
+    // The rest of a column after match_diag: the serial O scan (kDir = +1:
+    // O from level j-1, in increasing j; -1: from level j+1, in decreasing
+    // j), the unreachable states, and the levels above jm (kNone, and kInf
+    // from cv[jm + 1] to the end of buf, the buffer cv points into).
+    template <int kDir>
+    void close_column(C* cv, uint8_t* ptr, int jm, std::vector<C>& buf) const {
+        constexpr C kInf = CostTraits<C>::kInf;
+        int j = kDir > 0 ? 0 : jm;
+        C run = cv[j];
+        for (int n = 0; n < jm; ++n) {
+            j += kDir;
+            const C o = run + Wo;
+            const C c = cv[j];
+            const bool take_o = o < c;
+            run = take_o ? o : c;
+            cv[j] = run;
+            ptr[j] = take_o ? uint8_t{kO} : ptr[j];
+        }
+        mark_unreachable(cv, ptr, jm);
+        for (int k = jm + 1; k < D; ++k) ptr[k] = kNone;
+        std::fill(cv + jm + 1, buf.data() + buf.size(), kInf);
     }
 
     // States whose every candidate came from an unreachable state.
@@ -356,62 +343,66 @@ void forward_line_cost(const Params& p, const int64_t* cost, int N, LineTables& 
 
 namespace {
 
-inline uint8_t voted_bp_impl(const LineTables* above, const LineTables& self,
-                             const LineTables* below, int i, int j) {
-    const uint8_t own = self.bp(i, j);
-    if (!neighbours_agree(above, below)) return own;
-    const uint8_t v = above->bp(i, j);
-    if (v == own || v != below->bp(i, j)) return own;
-    bool ok = false;
+// One step along a pointer: kDir = -1 follows bp back (towards site -1),
+// +1 follows fp forward (towards site N-1). M moves one site, D one site
+// and one level towards level 0 going forward, O one level.
+template <int kDir>
+inline void step(uint8_t v, int& i, int& j) {
     switch (v) {
         case kM:
-            ok = right_state_ok(self, i - 1, j);
+            i += kDir;
             break;
         case kD:
-            ok = right_state_ok(self, i - 1, j + 1);
+            i += kDir;
+            j -= kDir;
             break;
-        case kO:
-            ok = right_state_ok(self, i, j - 1);
-            break;
-        default:
+        default:  // kO; kNone cannot occur on a reachable path
+            j += kDir;
             break;
     }
+}
+
+// The pointer of state (i, j) of the bp (kDir = -1) or fp (+1) table, with
+// the A.9 vote: the neighbours' common pointer when it differs from the own
+// one and leads to a valid state of this line.
+template <int kDir>
+inline uint8_t voted(const LineTables* above, const LineTables& self, const LineTables* below,
+                     int i, int j) {
+    auto ptr = [&](const LineTables& t) { return kDir < 0 ? t.bp(i, j) : t.fp(i, j); };
+    const uint8_t own = ptr(self);
+    if (!neighbours_agree(above, below)) return own;
+    const uint8_t v = ptr(*above);
+    if (v == own || v != ptr(*below) || v > kO) return own;
+    int ni = i, nj = j;
+    step<kDir>(v, ni, nj);
+    const bool ok = kDir < 0 ? right_state_ok(self, ni, nj) : left_state_ok(self, ni, nj);
     return ok ? v : own;
 }
 
-inline uint8_t voted_fp_impl(const LineTables* above, const LineTables& self,
-                             const LineTables* below, int i, int j) {
-    const uint8_t own = self.fp(i, j);
-    if (!neighbours_agree(above, below)) return own;
-    const uint8_t v = above->fp(i, j);
-    if (v == own || v != below->fp(i, j)) return own;
-    bool ok = false;
-    switch (v) {
-        case kM:
-            ok = left_state_ok(self, i + 1, j);
-            break;
-        case kD:
-            ok = left_state_ok(self, i + 1, j - 1);
-            break;
-        case kO:
-            ok = left_state_ok(self, i, j + 1);
-            break;
-        default:
-            break;
+// Follows the pointers from (i, j) while more(i, j), appending one event a
+// step: back along bp (kDir = -1) the event of the state left, forward
+// along fp (+1) the event of the state reached.
+template <int kDir, class More>
+void walk(const LineTables* above, const LineTables& self, const LineTables* below, int& i, int& j,
+          std::vector<Event>& ev, More&& more) {
+    while (more(i, j)) {
+        const uint8_t v = voted<kDir>(above, self, below, i, j);
+        if (kDir < 0) ev.push_back({i, j, static_cast<Step>(v)});
+        step<kDir>(v, i, j);
+        if (kDir > 0) ev.push_back({i, j, static_cast<Step>(v)});
     }
-    return ok ? v : own;
 }
 
 }  // namespace
 
 uint8_t voted_bp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
                  int j) {
-    return voted_bp_impl(above, self, below, i, j);
+    return voted<-1>(above, self, below, i, j);
 }
 
 uint8_t voted_fp(const LineTables* above, const LineTables& self, const LineTables* below, int i,
                  int j) {
-    return voted_fp_impl(above, self, below, i, j);
+    return voted<+1>(above, self, below, i, j);
 }
 
 std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
@@ -424,42 +415,12 @@ std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
         // Right part: forward from (s, js) to the end state (N-1, 0), then
         // reversed, so that the events come in backtrack order as in single.
         int i = self.s, j = self.js;
-        while (i < self.N - 1) {
-            const uint8_t v = voted_fp_impl(above, self, below, i, j);
-            switch (v) {
-                case kM:
-                    ++i;
-                    break;
-                case kD:
-                    ++i;
-                    --j;
-                    break;
-                default:
-                    ++j;
-                    break;
-            }
-            ev.push_back({i, j, static_cast<Step>(v)});
-        }
+        walk<+1>(above, self, below, i, j, ev, [&](int ii, int) { return ii < self.N - 1; });
         std::reverse(ev.begin(), ev.end());
         // Left part: back from (s, js) to column -1.
         i = self.s;
         j = self.js;
-        while (i > -1) {
-            const uint8_t v = voted_bp_impl(above, self, below, i, j);
-            ev.push_back({i, j, static_cast<Step>(v)});
-            switch (v) {
-                case kM:
-                    --i;
-                    break;
-                case kD:
-                    --i;
-                    ++j;
-                    break;
-                default:
-                    --j;
-                    break;
-            }
-        }
+        walk<-1>(above, self, below, i, j, ev, [](int ii, int) { return ii > -1; });
         return ev;
     }
 
@@ -467,43 +428,14 @@ std::vector<Event> backtrack(const LineTables* above, const LineTables& self,
         // Left wavefront: forward from (-1, 0) to (s-1, ds) or any state of site s-1.
         int i = -1, j = 0;
         const int last = self.s - 1;
-        while (!(i == last && (self.ds < 0 || j == self.ds))) {
-            const uint8_t v = voted_fp_impl(above, self, below, i, j);
-            switch (v) {
-                case kM:
-                    ++i;
-                    break;
-                case kD:
-                    ++i;
-                    --j;
-                    break;
-                default:  // kO; kNone cannot occur on a reachable path
-                    ++j;
-                    break;
-            }
-            ev.push_back({i, j, static_cast<Step>(v)});
-        }
+        walk<+1>(above, self, below, i, j, ev,
+                 [&](int ii, int jj) { return !(ii == last && (self.ds < 0 || jj == self.ds)); });
     }
 
     // Right wavefront (or the whole line in single mode): back from (N-1, 0).
     const int stop = self.bidir ? self.s : -1;
     int i = self.N - 1, j = 0;
-    while (i > stop) {
-        const uint8_t v = voted_bp_impl(above, self, below, i, j);
-        ev.push_back({i, j, static_cast<Step>(v)});
-        switch (v) {
-            case kM:
-                --i;
-                break;
-            case kD:
-                --i;
-                ++j;
-                break;
-            default:  // kO
-                --j;
-                break;
-        }
-    }
+    walk<-1>(above, self, below, i, j, ev, [&](int ii, int) { return ii > stop; });
     if (self.bidir) {
         while (self.ds >= 0 && j > self.ds) {  // O chain above a fixed seed
             ev.push_back({i, j, kO});

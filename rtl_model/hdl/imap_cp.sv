@@ -24,49 +24,15 @@
 // after reset (docs/rtl.md, "Clocks and machine cycles").
 module imap_cp
 #(
-    parameter int P = 8,
-    parameter int MEM_BYTES = 1024,
-    parameter int EXT_BYTES = 65536,
-    parameter int NREGS = 16,
-    parameter int MASK_DEPTH = 8,
-    parameter int CALL_DEPTH = 16,
-    parameter int IMEM_WORDS = 65536,
-    parameter int XROWS = 8,
-    parameter int PHASES = 256
+`include "imap_params.svh"
 ) (
     input logic clk,
     input logic rst_n,
 `ifdef IMAP_MUTANTS
     input logic [7:0] mutant,  // planted bug (mutation check)
 `endif
-    // host port: program and param block (written while rst_n = 0)
-    input logic host_we,
-    input logic host_sel,  // 0 = instruction memory, 1 = param block
-    input logic [23:0] host_addr,
-    input logic [63:0] host_data,
-    // straps: the cost table (docs/isa.md 2.2) and the machine configuration
-    input logic [31:0] c_alu,
-    input logic [31:0] c_mem,
-    input logic [31:0] c_indirect_extra,
-    input logic [31:0] c_ring_hop,
-    input logic [31:0] c_mask,
-    input logic [31:0] c_status,
-    input logic [31:0] c_cp,
-    input logic [31:0] c_branch_taken,
-    input logic [31:0] c_video_line,
-    input logic [31:0] c_xfer_setup,
-    input logic [31:0] c_ext_bpc,
-    input logic [31:0] c_ext_beat,
-    input logic [31:0] c_shift_bits,
-    input logic [31:0] c_minmax_extra,
-    input logic [31:0] cfg_prog_len,
-    input logic [7:0] cfg_pe_regs,
-    input logic [8:0] cfg_mask_depth,
-    input logic [8:0] cfg_call_depth,
-    input logic cfg_indirect,
-    input logic cfg_ext_on,
-    input logic [63:0] cfg_watchdog,
-    input logic cfg_trace,
+    input imap_pkg::host_t host,  // program and param block (written while rst_n = 0)
+    input imap_pkg::straps_t straps,  // the cost table and the machine configuration
     // control word to the array
     output imap_pkg::cw_t cw,
     output imap_pkg::cwx_t cwx,
@@ -237,26 +203,26 @@ module imap_cp
     case (d_fmt)
       imap_pkg::FMT_NONE: d_illegal = d_rd != 0 || d_ra != 0 || d_rb != 0 || d_imm != 0;
       imap_pkg::FMT_RRR:
-      d_illegal = d_imm != 0 || d_rd >= cfg_pe_regs || d_ra >= cfg_pe_regs || d_rb >= cfg_pe_regs;
-      imap_pkg::FMT_RRI8: d_illegal = d_rb != 0 || d_imm > 255 || d_rd >= cfg_pe_regs || d_ra >= cfg_pe_regs;
-      imap_pkg::FMT_RR: d_illegal = d_rb != 0 || d_imm != 0 || d_rd >= cfg_pe_regs || d_ra >= cfg_pe_regs;
-      imap_pkg::FMT_RI8: d_illegal = d_ra != 0 || d_rb != 0 || d_imm > 255 || d_rd >= cfg_pe_regs;
-      imap_pkg::FMT_RSH: d_illegal = d_rb != 0 || d_imm > 7 || d_rd >= cfg_pe_regs || d_ra >= cfg_pe_regs;
-      imap_pkg::FMT_CMP: d_illegal = d_rd != 0 || d_imm != 0 || d_ra >= cfg_pe_regs || d_rb >= cfg_pe_regs;
-      imap_pkg::FMT_CMPI: d_illegal = d_rd != 0 || d_rb != 0 || d_imm > 255 || d_ra >= cfg_pe_regs;
-      imap_pkg::FMT_R: d_illegal = d_ra != 0 || d_rb != 0 || d_imm != 0 || d_rd >= cfg_pe_regs;
-      imap_pkg::FMT_RC: d_illegal = d_rb != 0 || d_imm != 0 || d_ra > 15 || d_rd >= cfg_pe_regs;
-      imap_pkg::FMT_RCK: d_illegal = d_rb != 0 || d_imm > 3 || d_ra > 15 || d_rd >= cfg_pe_regs;
-      imap_pkg::FMT_RK: d_illegal = d_ra != 0 || d_rb != 0 || d_imm > 3 || d_rd >= cfg_pe_regs;
-      imap_pkg::FMT_LD: d_illegal = d_ra != 0 || (d_rb > 15 && d_rb != 128) || d_rd >= cfg_pe_regs;
+      d_illegal = d_imm != 0 || d_rd >= straps.cfg_pe_regs || d_ra >= straps.cfg_pe_regs || d_rb >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RRI8: d_illegal = d_rb != 0 || d_imm > 255 || d_rd >= straps.cfg_pe_regs || d_ra >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RR: d_illegal = d_rb != 0 || d_imm != 0 || d_rd >= straps.cfg_pe_regs || d_ra >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RI8: d_illegal = d_ra != 0 || d_rb != 0 || d_imm > 255 || d_rd >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RSH: d_illegal = d_rb != 0 || d_imm > 7 || d_rd >= straps.cfg_pe_regs || d_ra >= straps.cfg_pe_regs;
+      imap_pkg::FMT_CMP: d_illegal = d_rd != 0 || d_imm != 0 || d_ra >= straps.cfg_pe_regs || d_rb >= straps.cfg_pe_regs;
+      imap_pkg::FMT_CMPI: d_illegal = d_rd != 0 || d_rb != 0 || d_imm > 255 || d_ra >= straps.cfg_pe_regs;
+      imap_pkg::FMT_R: d_illegal = d_ra != 0 || d_rb != 0 || d_imm != 0 || d_rd >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RC: d_illegal = d_rb != 0 || d_imm != 0 || d_ra > 15 || d_rd >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RCK: d_illegal = d_rb != 0 || d_imm > 3 || d_ra > 15 || d_rd >= straps.cfg_pe_regs;
+      imap_pkg::FMT_RK: d_illegal = d_ra != 0 || d_rb != 0 || d_imm > 3 || d_rd >= straps.cfg_pe_regs;
+      imap_pkg::FMT_LD: d_illegal = d_ra != 0 || (d_rb > 15 && d_rb != 128) || d_rd >= straps.cfg_pe_regs;
       imap_pkg::FMT_LDX:
-      d_illegal = !cfg_indirect || d_imm[31:30] != 0 || d_rd >= cfg_pe_regs ||
-          d_ra >= cfg_pe_regs || d_rb >= cfg_pe_regs || (d_imm[29] && d_rb != 0) ||
+      d_illegal = !straps.cfg_indirect || d_imm[31:30] != 0 || d_rd >= straps.cfg_pe_regs ||
+          d_ra >= straps.cfg_pe_regs || d_rb >= straps.cfg_pe_regs || (d_imm[29] && d_rb != 0) ||
           (!d_imm[28] && d_imm[27:24] != 0);
       imap_pkg::FMT_XFER: d_illegal = d_rd > 15 || d_ra > 15 || (d_rb > 15 && d_rb != 128);
       imap_pkg::FMT_RING:
-      d_illegal = d_rb != 0 || d_imm == 0 || d_imm > 65535 || d_rd >= cfg_pe_regs ||
-          d_ra >= cfg_pe_regs;
+      d_illegal = d_rb != 0 || d_imm == 0 || d_imm > 65535 || d_rd >= straps.cfg_pe_regs ||
+          d_ra >= straps.cfg_pe_regs;
       imap_pkg::FMT_STAT: d_illegal = d_ra != 0 || d_rb != 0 || d_imm != 0 || d_rd > 15;
       imap_pkg::FMT_CI: d_illegal = d_ra != 0 || d_rb != 0 || d_rd > 15;
       imap_pkg::FMT_CC: d_illegal = d_rb != 0 || d_imm != 0 || d_rd > 15 || d_ra > 15;
@@ -264,9 +230,9 @@ module imap_cp
       imap_pkg::FMT_CCI: d_illegal = d_rb != 0 || d_rd > 15 || d_ra > 15;
       imap_pkg::FMT_CSH: d_illegal = d_rb != 0 || d_imm > 31 || d_rd > 15 || d_ra > 15;
       imap_pkg::FMT_CMEM: d_illegal = d_ra != 0 || d_rd > 15 || (d_rb > 15 && d_rb != 128);
-      imap_pkg::FMT_J: d_illegal = d_rd != 0 || d_ra != 0 || d_rb != 0 || d_imm >= cfg_prog_len;
-      imap_pkg::FMT_BCC: d_illegal = d_rd != 0 || d_ra > 15 || d_rb > 15 || d_imm >= cfg_prog_len;
-      imap_pkg::FMT_B1: d_illegal = d_rd != 0 || d_rb != 0 || d_ra > 15 || d_imm >= cfg_prog_len;
+      imap_pkg::FMT_J: d_illegal = d_rd != 0 || d_ra != 0 || d_rb != 0 || d_imm >= straps.cfg_prog_len;
+      imap_pkg::FMT_BCC: d_illegal = d_rd != 0 || d_ra > 15 || d_rb > 15 || d_imm >= straps.cfg_prog_len;
+      imap_pkg::FMT_B1: d_illegal = d_rd != 0 || d_rb != 0 || d_ra > 15 || d_imm >= straps.cfg_prog_len;
       imap_pkg::FMT_VIDEO: d_illegal = d_rd > 1 || (d_rb > 15 && d_rb != 128);
       imap_pkg::FMT_PHASE: d_illegal = d_rd != 0 || d_ra != 0 || d_rb != 0 || d_imm > 65535;
       default: d_illegal = 1'b1;
@@ -308,7 +274,7 @@ module imap_cp
     // ---- faults found in decode (range checks on forwarded values)
     d_flt = imap_pkg::FLT_NONE;
     d_faddr = 64'h0;
-    if (32'(d_pc) >= cfg_prog_len) begin
+    if (32'(d_pc) >= straps.cfg_prog_len) begin
       d_flt = imap_pkg::FLT_PC_END;
       d_faddr = 64'(d_pc);
     end else if (d_illegal) begin
@@ -331,7 +297,7 @@ module imap_cp
           d_faddr = {{30{d_addr[33]}}, d_addr};
         end
         imap_pkg::OP_XLD, imap_pkg::OP_XST:
-        if (!cfg_ext_on) d_flt = imap_pkg::FLT_EXT_NONE;
+        if (!straps.cfg_ext_on) d_flt = imap_pkg::FLT_EXT_NONE;
         else if (d_cd[31]) begin
           d_flt = imap_pkg::FLT_XFER_LEN;
           d_faddr = {{32{d_cd[31]}}, d_cd};
@@ -371,7 +337,7 @@ module imap_cp
   logic [2:0] sb;
 
   always_comb begin
-    sb = (c_shift_bits[2:0] == 3'd0) ? 3'd1 : c_shift_bits[2:0];
+    sb = (straps.c_shift_bits[2:0] == 3'd0) ? 3'd1 : straps.c_shift_bits[2:0];
     x_step = 1'b0;
     x_last = 1'b0;
     x_rows = x_rdone;
@@ -401,7 +367,7 @@ module imap_cp
         else begin
           // data cycle: c_ext_bpc bytes cross the path; a row is complete
           // when the bytes of all active PEs have crossed
-          xc = x_cred + c_ext_bpc;
+          xc = x_cred + straps.c_ext_bpc;
           xnr = 32'd0;
           for (int i = 0; i < XROWS; i++)
             if (xc >= 32'(xa_now)) begin
@@ -409,7 +375,7 @@ module imap_cp
               xnr = xnr + 32'd1;
             end
           x_credn = xc;
-          x_last = (xb_now <= 48'(c_ext_bpc));
+          x_last = (xb_now <= 48'(straps.c_ext_bpc));
           x_rows = x_last ? x_len : x_rdone + xnr;
           if (x_last && x_len != 32'd0 && ((`IMAP_MUT(4) && !x_xst) || (`IMAP_MUT(12) && x_xst)))
             x_rows = x_len - 32'd1;
@@ -423,15 +389,15 @@ module imap_cp
     x_fpe = 32'hFFFF_FFFF;
     x_fad = x_faddr;
     if (x_v && x_first) begin
-      if (mcycle >= cfg_watchdog) x_flt = imap_pkg::FLT_WATCHDOG;  // the run would be longer
+      if (mcycle >= straps.cfg_watchdog) x_flt = imap_pkg::FLT_WATCHDOG;  // the run would be longer
       else if (x_dflt != imap_pkg::FLT_NONE) x_flt = x_dflt;
       else
         case (x_op)
           imap_pkg::OP_MIF:
-          if ({1'b0, msp} >= {1'b0, cfg_mask_depth} + {9'd0, `IMAP_MUT(9)})
+          if ({1'b0, msp} >= {1'b0, straps.cfg_mask_depth} + {9'd0, `IMAP_MUT(9)})
             x_flt = imap_pkg::FLT_MASK_OVF;
           imap_pkg::OP_MELSE, imap_pkg::OP_MEND: if (msp == 9'd0) x_flt = imap_pkg::FLT_MASK_UNF;
-          imap_pkg::OP_CALL: if (csp >= cfg_call_depth) x_flt = imap_pkg::FLT_CALL_OVF;
+          imap_pkg::OP_CALL: if (csp >= straps.cfg_call_depth) x_flt = imap_pkg::FLT_CALL_OVF;
           imap_pkg::OP_RET: if (csp == 9'd0) x_flt = imap_pkg::FLT_CALL_UNF;
           imap_pkg::OP_LDX, imap_pkg::OP_STX:
           if (memx_bad) begin
@@ -449,7 +415,7 @@ module imap_cp
 
     x_bubble = x_taken && !(`IMAP_MUT(10) && x_op == imap_pkg::OP_LOOP);
     if (!run_q) x_free = 1'b0;
-    else if (x_v) x_free = x_commit && !(x_bubble && c_branch_taken != 0) && x_op != imap_pkg::OP_HALT;
+    else if (x_v) x_free = x_commit && !(x_bubble && straps.c_branch_taken != 0) && x_op != imap_pkg::OP_HALT;
     else if (bub != 32'd0) x_free = (bub == 32'd1);
     else x_free = 1'b1;
     d_adv = d_v && x_free;
@@ -468,7 +434,7 @@ module imap_cp
   end
 
   // CP result of the instruction in X (committed at its last cycle, forwarded
-  // to D before that)
+  // to D before that): a row per CP-register-writing opcode, {write, value}
   always_comb begin
     x_imm = x_ir[63:32];
     x_cwe = 1'b0;
@@ -476,83 +442,25 @@ module imap_cp
     x_cres = 32'h0;
     if (x_v)
       case (x_op)
-        imap_pkg::OP_CLI: begin
-          x_cwe = 1'b1;
-          x_cres = x_imm;
-        end
-        imap_pkg::OP_CMOV: begin
-          x_cwe = 1'b1;
-          x_cres = x_a;
-        end
-        imap_pkg::OP_CADD: begin
-          x_cwe = 1'b1;
-          x_cres = x_a + x_b;
-        end
-        imap_pkg::OP_CADDI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a + x_imm;
-        end
-        imap_pkg::OP_CSUB: begin
-          x_cwe = 1'b1;
-          x_cres = x_a - x_b;
-        end
-        imap_pkg::OP_CSUBI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a - x_imm;
-        end
-        imap_pkg::OP_CAND: begin
-          x_cwe = 1'b1;
-          x_cres = x_a & x_b;
-        end
-        imap_pkg::OP_CANDI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a & x_imm;
-        end
-        imap_pkg::OP_COR: begin
-          x_cwe = 1'b1;
-          x_cres = x_a | x_b;
-        end
-        imap_pkg::OP_CORI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a | x_imm;
-        end
-        imap_pkg::OP_CXOR: begin
-          x_cwe = 1'b1;
-          x_cres = x_a ^ x_b;
-        end
-        imap_pkg::OP_CXORI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a ^ x_imm;
-        end
-        imap_pkg::OP_CSHLI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a << x_imm[4:0];
-        end
-        imap_pkg::OP_CSHRI: begin
-          x_cwe = 1'b1;
-          x_cres = x_a >> x_imm[4:0];
-        end
-        imap_pkg::OP_CSRAI: begin
-          x_cwe = 1'b1;
-          x_cres = $unsigned($signed(x_a) >>> x_imm[4:0]);
-        end
-        imap_pkg::OP_CLD: begin
-          x_cwe = 1'b1;
-          x_cres = param[x_addr[7:0]];
-        end
-        imap_pkg::OP_LOOP: begin
-          x_cwe = 1'b1;
-          x_cidx = x_ir[19:16];
-          x_cres = x_a - 32'd1;
-        end
-        imap_pkg::OP_RANY: begin
-          x_cwe = 1'b1;
-          x_cres = {31'h0, any_t};
-        end
-        imap_pkg::OP_RALL: begin
-          x_cwe = 1'b1;
-          x_cres = {31'h0, all_t};
-        end
+        imap_pkg::OP_CLI: begin x_cwe = 1'b1; x_cres = x_imm; end
+        imap_pkg::OP_CMOV: begin x_cwe = 1'b1; x_cres = x_a; end
+        imap_pkg::OP_CADD: begin x_cwe = 1'b1; x_cres = x_a + x_b; end
+        imap_pkg::OP_CADDI: begin x_cwe = 1'b1; x_cres = x_a + x_imm; end
+        imap_pkg::OP_CSUB: begin x_cwe = 1'b1; x_cres = x_a - x_b; end
+        imap_pkg::OP_CSUBI: begin x_cwe = 1'b1; x_cres = x_a - x_imm; end
+        imap_pkg::OP_CAND: begin x_cwe = 1'b1; x_cres = x_a & x_b; end
+        imap_pkg::OP_CANDI: begin x_cwe = 1'b1; x_cres = x_a & x_imm; end
+        imap_pkg::OP_COR: begin x_cwe = 1'b1; x_cres = x_a | x_b; end
+        imap_pkg::OP_CORI: begin x_cwe = 1'b1; x_cres = x_a | x_imm; end
+        imap_pkg::OP_CXOR: begin x_cwe = 1'b1; x_cres = x_a ^ x_b; end
+        imap_pkg::OP_CXORI: begin x_cwe = 1'b1; x_cres = x_a ^ x_imm; end
+        imap_pkg::OP_CSHLI: begin x_cwe = 1'b1; x_cres = x_a << x_imm[4:0]; end
+        imap_pkg::OP_CSHRI: begin x_cwe = 1'b1; x_cres = x_a >> x_imm[4:0]; end
+        imap_pkg::OP_CSRAI: begin x_cwe = 1'b1; x_cres = $unsigned($signed(x_a) >>> x_imm[4:0]); end
+        imap_pkg::OP_CLD: begin x_cwe = 1'b1; x_cres = param[x_addr[7:0]]; end
+        imap_pkg::OP_LOOP: begin x_cwe = 1'b1; x_cidx = x_ir[19:16]; x_cres = x_a - 32'd1; end
+        imap_pkg::OP_RANY: begin x_cwe = 1'b1; x_cres = {31'h0, any_t}; end
+        imap_pkg::OP_RALL: begin x_cwe = 1'b1; x_cres = {31'h0, all_t}; end
         default: ;
       endcase
   end
@@ -563,7 +471,7 @@ module imap_cp
   always_comb begin
     cw = x_cw;
     cw.clr = clr_q != 2'd0;
-    cw.trace = cfg_trace;
+    cw.trace = straps.cfg_trace;
     cw.commit = x_commit;
     cw.first = x_v && x_first && x_kind == imap_pkg::K_SHIFT;  // shifter load
     cw.step = x_v && x_step;
@@ -662,23 +570,13 @@ module imap_cp
     d_cw.rb = d_rb[5:0];
     d_cw.imm = d_imm[7:0];
     d_cw.rd_we = 1'b1;
+    // a row per opcode: the unit function and what differs from the defaults
+    // above (rd written; C, T not written; no mask command)
     case (d_op)
-      imap_pkg::OP_ADD, imap_pkg::OP_ADDI: begin
-        d_cw.fn = imap_pkg::F_ADD;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_ADC, imap_pkg::OP_ADCI: begin
-        d_cw.fn = imap_pkg::F_ADC;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_SUB, imap_pkg::OP_SUBI: begin
-        d_cw.fn = imap_pkg::F_SUB;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_SBC, imap_pkg::OP_SBCI: begin
-        d_cw.fn = imap_pkg::F_SBC;
-        d_cw.c_we = 1'b1;
-      end
+      imap_pkg::OP_ADD, imap_pkg::OP_ADDI: begin d_cw.fn = imap_pkg::F_ADD; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_ADC, imap_pkg::OP_ADCI: begin d_cw.fn = imap_pkg::F_ADC; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_SUB, imap_pkg::OP_SUBI: begin d_cw.fn = imap_pkg::F_SUB; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_SBC, imap_pkg::OP_SBCI: begin d_cw.fn = imap_pkg::F_SBC; d_cw.c_we = 1'b1; end
       imap_pkg::OP_AND, imap_pkg::OP_ANDI: d_cw.fn = imap_pkg::F_AND;
       imap_pkg::OP_OR, imap_pkg::OP_ORI: d_cw.fn = imap_pkg::F_OR;
       imap_pkg::OP_XOR, imap_pkg::OP_XORI: d_cw.fn = imap_pkg::F_XOR;
@@ -686,31 +584,16 @@ module imap_cp
       imap_pkg::OP_MAX, imap_pkg::OP_MAXI: d_cw.fn = imap_pkg::F_MAX;
       imap_pkg::OP_MOV: d_cw.fn = imap_pkg::F_PASSA;
       imap_pkg::OP_LI: d_cw.fn = imap_pkg::F_PASSB;
-      imap_pkg::OP_LC, imap_pkg::OP_LCB: begin
-        d_cw.fn = imap_pkg::F_PASSB;
-        d_cw.imm = d_byte;
-      end
+      imap_pkg::OP_LC, imap_pkg::OP_LCB: begin d_cw.fn = imap_pkg::F_PASSB; d_cw.imm = d_byte; end
       imap_pkg::OP_PIDX: d_cw.fn = imap_pkg::F_PIDX;
       imap_pkg::OP_SETC: d_cw.fn = imap_pkg::F_SETC;
       imap_pkg::OP_SETT: d_cw.fn = imap_pkg::F_SETT;
       imap_pkg::OP_CSEL: d_cw.fn = imap_pkg::F_CSEL;
       imap_pkg::OP_TSEL: d_cw.fn = imap_pkg::F_TSEL;
-      imap_pkg::OP_SHLI, imap_pkg::OP_SHLV: begin
-        d_cw.fn = imap_pkg::F_SHL;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_SHRI, imap_pkg::OP_SHRV: begin
-        d_cw.fn = imap_pkg::F_SHR;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_ROLC: begin
-        d_cw.fn = imap_pkg::F_ROLC;
-        d_cw.c_we = 1'b1;
-      end
-      imap_pkg::OP_RORC: begin
-        d_cw.fn = imap_pkg::F_RORC;
-        d_cw.c_we = 1'b1;
-      end
+      imap_pkg::OP_SHLI, imap_pkg::OP_SHLV: begin d_cw.fn = imap_pkg::F_SHL; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_SHRI, imap_pkg::OP_SHRV: begin d_cw.fn = imap_pkg::F_SHR; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_ROLC: begin d_cw.fn = imap_pkg::F_ROLC; d_cw.c_we = 1'b1; end
+      imap_pkg::OP_RORC: begin d_cw.fn = imap_pkg::F_RORC; d_cw.c_we = 1'b1; end
       imap_pkg::OP_CEQ, imap_pkg::OP_CEQI, imap_pkg::OP_CNE, imap_pkg::OP_CNEI, imap_pkg::OP_CLTU, imap_pkg::OP_CLTUI, imap_pkg::OP_CLEU, imap_pkg::OP_CLEUI, imap_pkg::OP_CGTU,
           imap_pkg::OP_CGTUI, imap_pkg::OP_CGEU, imap_pkg::OP_CGEUI, imap_pkg::OP_TC, imap_pkg::OP_TNOT: begin
         d_cw.fn = imap_pkg::F_CMP;
@@ -729,39 +612,15 @@ module imap_cp
       end
       imap_pkg::OP_LD: d_cw.fn = imap_pkg::F_LD;
       imap_pkg::OP_LDX: d_cw.fn = imap_pkg::F_LDX;
-      imap_pkg::OP_ST: begin
-        d_cw.fn = imap_pkg::F_ST;
-        d_cw.rd_we = 1'b0;
-      end
-      imap_pkg::OP_STX: begin
-        d_cw.fn = imap_pkg::F_STX;
-        d_cw.rd_we = 1'b0;
-      end
-      imap_pkg::OP_RXL: begin
-        d_cw.fn = imap_pkg::F_RING;
-        d_cw.up = 1'b1;
-      end
+      imap_pkg::OP_ST: begin d_cw.fn = imap_pkg::F_ST; d_cw.rd_we = 1'b0; end
+      imap_pkg::OP_STX: begin d_cw.fn = imap_pkg::F_STX; d_cw.rd_we = 1'b0; end
+      imap_pkg::OP_RXL: begin d_cw.fn = imap_pkg::F_RING; d_cw.up = 1'b1; end
       imap_pkg::OP_RXR: d_cw.fn = imap_pkg::F_RING;
-      imap_pkg::OP_MIF: begin
-        d_cw.rd_we = 1'b0;
-        d_cw.mask = imap_pkg::MK_IF;
-      end
-      imap_pkg::OP_MELSE: begin
-        d_cw.rd_we = 1'b0;
-        d_cw.mask = imap_pkg::MK_ELSE;
-      end
-      imap_pkg::OP_MEND: begin
-        d_cw.rd_we = 1'b0;
-        d_cw.mask = imap_pkg::MK_END;
-      end
-      imap_pkg::OP_MALL: begin
-        d_cw.rd_we = 1'b0;
-        d_cw.mask = imap_pkg::MK_ALL;
-      end
-      default: begin
-        d_cw.fn = imap_pkg::F_NONE;
-        d_cw.rd_we = 1'b0;
-      end
+      imap_pkg::OP_MIF: begin d_cw.rd_we = 1'b0; d_cw.mask = imap_pkg::MK_IF; end
+      imap_pkg::OP_MELSE: begin d_cw.rd_we = 1'b0; d_cw.mask = imap_pkg::MK_ELSE; end
+      imap_pkg::OP_MEND: begin d_cw.rd_we = 1'b0; d_cw.mask = imap_pkg::MK_END; end
+      imap_pkg::OP_MALL: begin d_cw.rd_we = 1'b0; d_cw.mask = imap_pkg::MK_ALL; end
+      default: begin d_cw.fn = imap_pkg::F_NONE; d_cw.rd_we = 1'b0; end
     endcase
     // operand b: the immediate for the Rri8 / Cmpi / Ri8 / Rsh formats
     case (d_fmt)
@@ -773,16 +632,16 @@ module imap_cp
   // Cycles of the first sequencer step of an instruction entering X, minus 1.
   function automatic logic [31:0] first_count(input imap_pkg::kind_t k);
     case (k)
-      imap_pkg::K_CP: first_count = c_cp - 32'd1;
-      imap_pkg::K_ALU: first_count = c_alu - 32'd1;
-      imap_pkg::K_MINMAX: first_count = c_alu + c_minmax_extra - 32'd1;
-      imap_pkg::K_SHIFT: first_count = c_alu - 32'd1;  // latency before the passes
-      imap_pkg::K_MEM: first_count = c_mem - 32'd1;
-      imap_pkg::K_MEMX: first_count = c_mem + c_indirect_extra - 32'd1;
-      imap_pkg::K_MASK: first_count = c_mask - 32'd1;
-      imap_pkg::K_STATUS: first_count = c_status - 32'd1;
-      imap_pkg::K_VIDEO: first_count = c_video_line - 32'd1;
-      imap_pkg::K_XFER: first_count = c_xfer_setup - 32'd1;
+      imap_pkg::K_CP: first_count = straps.c_cp - 32'd1;
+      imap_pkg::K_ALU: first_count = straps.c_alu - 32'd1;
+      imap_pkg::K_MINMAX: first_count = straps.c_alu + straps.c_minmax_extra - 32'd1;
+      imap_pkg::K_SHIFT: first_count = straps.c_alu - 32'd1;  // latency before the passes
+      imap_pkg::K_MEM: first_count = straps.c_mem - 32'd1;
+      imap_pkg::K_MEMX: first_count = straps.c_mem + straps.c_indirect_extra - 32'd1;
+      imap_pkg::K_MASK: first_count = straps.c_mask - 32'd1;
+      imap_pkg::K_STATUS: first_count = straps.c_status - 32'd1;
+      imap_pkg::K_VIDEO: first_count = straps.c_video_line - 32'd1;
+      imap_pkg::K_XFER: first_count = straps.c_xfer_setup - 32'd1;
       default: first_count = 32'd0;
     endcase
   endfunction
@@ -808,9 +667,9 @@ module imap_cp
       m_active <= 17'(P);
       m_dirty <= 1'b0;
       for (int i = 0; i < 16; i++) creg[i] <= 32'h0;
-      if (host_we) begin
-        if (host_sel) param[host_addr[7:0]] <= host_data[31:0];
-        else imem[host_addr[$clog2(IMEM_WORDS)-1:0]] <= host_data;
+      if (host.we) begin
+        if (host.sel) param[host.addr[7:0]] <= host.data[31:0];
+        else imem[host.addr[$clog2(IMEM_WORDS)-1:0]] <= host.data;
       end
     end else begin
       if (clr_q != 2'd0) clr_q <= clr_q - 2'd1;
@@ -847,7 +706,7 @@ module imap_cp
           end
           imap_pkg::K_RING: begin
             if (x_step) begin
-              x_hcyc <= c_ring_hop;
+              x_hcyc <= straps.c_ring_hop;
               x_hops <= x_hops - 17'd1;
             end else x_hcyc <= x_hcyc - 32'd1;
           end
@@ -863,8 +722,8 @@ module imap_cp
             end else begin
               x_cred <= x_credn;
               x_rdone <= x_rows;
-              x_brem <= x_last ? 48'd0 : xb_now - 48'(c_ext_bpc);
-              x_beat <= c_ext_beat - 32'd1;
+              x_brem <= x_last ? 48'd0 : xb_now - 48'(straps.c_ext_bpc);
+              x_beat <= straps.c_ext_beat - 32'd1;
             end
           end
           default: if (x_cnt != 32'd0 && !x_vwait) x_cnt <= x_cnt - 32'd1;
@@ -891,7 +750,7 @@ module imap_cp
         endcase
         msp <= msp_next;
         if (x_kind == imap_pkg::K_MASK) m_dirty <= 1'b1;
-        if (x_bubble) bub <= c_branch_taken;
+        if (x_bubble) bub <= straps.c_branch_taken;
       end
 
       // ---- D -> X
@@ -916,16 +775,16 @@ module imap_cp
         x_cyc0 <= count_now ? mcycle + 64'd1 : mcycle;
         x_cnt <= first_count(d_kind);
         x_zero <= (d_kind == imap_pkg::K_PHASE) ||
-            (d_kind == imap_pkg::K_XFER && c_xfer_setup == 32'd0 && d_cd == 32'd0);
+            (d_kind == imap_pkg::K_XFER && straps.c_xfer_setup == 32'd0 && d_cd == 32'd0);
         // shifter: bits to shift (7 for the per-PE amounts of shlv / shrv)
         x_shrem <= (d_op == imap_pkg::OP_SHLV || d_op == imap_pkg::OP_SHRV) ? 3'd7 : d_imm[2:0];
         x_shpass <= 1'b0;
         // ring
         x_hops <= d_imm[16:0];
-        x_hcyc <= c_ring_hop;
+        x_hcyc <= straps.c_ring_hop;
         // transfer engine
-        x_setup <= (c_xfer_setup != 32'd0);
-        x_beat <= c_ext_beat - 32'd1;
+        x_setup <= (straps.c_xfer_setup != 32'd0);
+        x_beat <= straps.c_ext_beat - 32'd1;
         x_brem <= 48'd0;  // counted in the first cycle (xb_now)
         x_cred <= 32'd0;
         x_rdone <= 32'd0;
@@ -943,7 +802,7 @@ module imap_cp
         fa = (d_adv && d_taken && d_flt == imap_pkg::FLT_NONE) ? d_target : f_pc;
         d_v <= 1'b1;
         d_pc <= fa;
-        d_ir <= (32'(fa) < cfg_prog_len) ? imem[fa[$clog2(IMEM_WORDS)-1:0]] : 64'h0;
+        d_ir <= (32'(fa) < straps.cfg_prog_len) ? imem[fa[$clog2(IMEM_WORDS)-1:0]] : 64'h0;
         f_pc <= fa + 1;
       end
     end
@@ -966,7 +825,7 @@ module imap_cp
         cw_ok = !cw.clr && cw.fn <= imap_pkg::F_RING &&
             cw.mask <= imap_pkg::MK_ALL && cw.sbits != 3'd0;
         if (cw.rd_we || cw.c_we || cw.t_we) cw_ok = cw_ok && cw.mask == imap_pkg::MK_NONE;
-        if (cw.rd_we) cw_ok = cw_ok && 8'(cw.rd) < cfg_pe_regs && 32'(cw.rd) < NREGS;
+        if (cw.rd_we) cw_ok = cw_ok && 8'(cw.rd) < straps.cfg_pe_regs && 32'(cw.rd) < NREGS;
         if (cw.step) cw_ok = cw_ok && (cw.fn == imap_pkg::F_SHL || cw.fn == imap_pkg::F_SHR ||
                                        cw.fn == imap_pkg::F_RING);
         if (cw.first) cw_ok = cw_ok && (cw.fn == imap_pkg::F_SHL || cw.fn == imap_pkg::F_SHR);
@@ -986,7 +845,7 @@ module imap_cp
         case (x_op)
           imap_pkg::OP_MIF:
           a_mask_ovf :
-          assert (msp < cfg_mask_depth && 32'(msp) < MASK_DEPTH)
+          assert (msp < straps.cfg_mask_depth && 32'(msp) < MASK_DEPTH)
           else `IMAP_FAIL(a_mask_ovf, -1);
           imap_pkg::OP_MELSE, imap_pkg::OP_MEND:
           a_mask_unf :
@@ -994,7 +853,7 @@ module imap_cp
           else `IMAP_FAIL(a_mask_unf, -1);
           imap_pkg::OP_CALL:
           a_call_ovf :
-          assert (csp < cfg_call_depth && 32'(csp) < CALL_DEPTH)
+          assert (csp < straps.cfg_call_depth && 32'(csp) < CALL_DEPTH)
           else `IMAP_FAIL(a_call_ovf, -1);
           imap_pkg::OP_RET:
           a_call_unf :
@@ -1046,8 +905,8 @@ module imap_cp
   // nothing more; the stack depths stay within the configuration
   a_cp_refill :
   assert property (@(posedge clk) disable iff (!rst_n)
-                   (x_commit && x_taken && c_branch_taken != 32'd0) |=>
-                   (!x_v && bub == c_branch_taken))
+                   (x_commit && x_taken && straps.c_branch_taken != 32'd0) |=>
+                   (!x_v && bub == straps.c_branch_taken))
   else `IMAP_FAIL(a_cp_refill, -1);
   a_cp_stopped :
   assert property (@(posedge clk) disable iff (!rst_n)
@@ -1055,7 +914,7 @@ module imap_cp
   else `IMAP_FAIL(a_cp_stopped, -1);
   a_stack_depth :
   assert property (@(posedge clk) disable iff (!rst_n)
-                   msp <= cfg_mask_depth && csp <= cfg_call_depth)
+                   msp <= straps.cfg_mask_depth && csp <= straps.cfg_call_depth)
   else `IMAP_FAIL(a_stack_depth, -1);
 `endif
 

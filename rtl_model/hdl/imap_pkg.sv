@@ -108,6 +108,43 @@ package imap_pkg;
     logic [19:0] addr;    // broadcast local-memory address of this cycle
   } cwx_t;
 
+  // ---- the chip's inputs from the host (docs/rtl.md) -------------------------
+  // Host port: the program and the param block, written while rst_n = 0.
+  typedef struct packed {
+    logic        we;
+    logic        sel;   // 0 = instruction memory, 1 = param block
+    logic [23:0] addr;
+    logic [63:0] data;
+  } host_t;
+
+  // Straps: the cost table (docs/isa.md 2.2) and the run-time machine
+  // configuration, sampled while rst_n = 0 and held during the run. The
+  // testbench top (rtl_model/verif/imap_tb.sv) has one port per field.
+  typedef struct packed {
+    logic [31:0] c_alu;
+    logic [31:0] c_mem;
+    logic [31:0] c_indirect_extra;
+    logic [31:0] c_ring_hop;
+    logic [31:0] c_mask;
+    logic [31:0] c_status;
+    logic [31:0] c_cp;
+    logic [31:0] c_branch_taken;
+    logic [31:0] c_video_line;
+    logic [31:0] c_xfer_setup;
+    logic [31:0] c_ext_bpc;
+    logic [31:0] c_ext_beat;
+    logic [31:0] c_shift_bits;
+    logic [31:0] c_minmax_extra;
+    logic [31:0] cfg_prog_len;
+    logic [7:0]  cfg_pe_regs;
+    logic [8:0]  cfg_mask_depth;
+    logic [8:0]  cfg_call_depth;
+    logic        cfg_indirect;
+    logic        cfg_ext_on;
+    logic [63:0] cfg_watchdog;
+    logic        cfg_trace;
+  } straps_t;
+
   // ---- faults -------------------------------------------------------------
   typedef enum logic [4:0] {
     FLT_NONE, FLT_ILLEGAL, FLT_PC_END, FLT_WATCHDOG, FLT_MEM, FLT_MEMX, FLT_PARAM,

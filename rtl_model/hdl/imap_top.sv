@@ -10,47 +10,15 @@
 // parameters (docs/rtl.md, "Configurations").
 module imap_top
 #(
-    parameter int P = 8,  // PEs (pes)
-    parameter int MEM_BYTES = 1024,  // local memory per PE (mem_bytes)
-    parameter int EXT_BYTES = 65536,  // external memory per PE (ext_bytes)
-    parameter int NREGS = 16,  // registers per PE (at least pe_regs)
-    parameter int MASK_DEPTH = 8,  // mask stack (at least mask_depth)
-    parameter int CALL_DEPTH = 16,  // return stack (at least call_depth)
-    parameter int IMEM_WORDS = 65536,  // instruction memory
-    parameter int XROWS = 8,  // rows per cycle of the transfer path (ext_bytes_per_cycle <= XROWS)
-    parameter int PHASES = 256  // per-phase cycle counters
+`include "imap_params.svh"
 ) (
     input logic clk,
     input logic rst_n,
 `ifdef IMAP_MUTANTS
     input logic [7:0] mutant,  // planted bug (mutation check)
 `endif
-    input logic host_we,
-    input logic host_sel,
-    input logic [23:0] host_addr,
-    input logic [63:0] host_data,
-    input logic [31:0] c_alu,
-    input logic [31:0] c_mem,
-    input logic [31:0] c_indirect_extra,
-    input logic [31:0] c_ring_hop,
-    input logic [31:0] c_mask,
-    input logic [31:0] c_status,
-    input logic [31:0] c_cp,
-    input logic [31:0] c_branch_taken,
-    input logic [31:0] c_video_line,
-    input logic [31:0] c_xfer_setup,
-    input logic [31:0] c_ext_bpc,
-    input logic [31:0] c_ext_beat,
-    input logic [31:0] c_shift_bits,
-    input logic [31:0] c_minmax_extra,
-    input logic [31:0] cfg_prog_len,
-    input logic [7:0] cfg_pe_regs,
-    input logic [8:0] cfg_mask_depth,
-    input logic [8:0] cfg_call_depth,
-    input logic cfg_indirect,
-    input logic cfg_ext_on,
-    input logic [63:0] cfg_watchdog,
-    input logic cfg_trace,
+    input imap_pkg::host_t host,  // the host port (program and param block)
+    input imap_pkg::straps_t straps,  // the cost table and the machine configuration
     output logic done,
     // board: external-memory row interface (prefetch xe_pf of XROWS rows from
     // xe_prow onto rbus; write xe_wr of xe_n rows at xe_wrow from rrow)
@@ -96,76 +64,20 @@ module imap_top
 
   // Configuration registers: the straps are sampled while rst_n = 0 and held
   // during the run (the design's logic depends on registers only).
-  logic [31:0] c_alu_q, c_mem_q, c_indirect_extra_q, c_ring_hop_q, c_mask_q, c_status_q, c_cp_q, c_branch_taken_q, c_video_line_q, c_xfer_setup_q, c_ext_bpc_q, c_ext_beat_q, c_shift_bits_q, c_minmax_extra_q, cfg_prog_len_q;
-  logic [7:0] cfg_pe_regs_q;
-  logic [8:0] cfg_mask_depth_q, cfg_call_depth_q;
-  logic cfg_indirect_q, cfg_ext_on_q, cfg_trace_q;
-  logic [63:0] cfg_watchdog_q;
+  imap_pkg::straps_t straps_q;
 `ifdef IMAP_MUTANTS
   logic [7:0] mutant_q;
 `endif
   always_ff @(posedge clk)
     if (!rst_n) begin
-      c_alu_q <= c_alu;
-      c_mem_q <= c_mem;
-      c_indirect_extra_q <= c_indirect_extra;
-      c_ring_hop_q <= c_ring_hop;
-      c_mask_q <= c_mask;
-      c_status_q <= c_status;
-      c_cp_q <= c_cp;
-      c_branch_taken_q <= c_branch_taken;
-      c_video_line_q <= c_video_line;
-      c_xfer_setup_q <= c_xfer_setup;
-      c_ext_bpc_q <= c_ext_bpc;
-      c_ext_beat_q <= c_ext_beat;
-      c_shift_bits_q <= c_shift_bits;
-      c_minmax_extra_q <= c_minmax_extra;
-      cfg_prog_len_q <= cfg_prog_len;
-      cfg_pe_regs_q <= cfg_pe_regs;
-      cfg_mask_depth_q <= cfg_mask_depth;
-      cfg_call_depth_q <= cfg_call_depth;
-      cfg_indirect_q <= cfg_indirect;
-      cfg_ext_on_q <= cfg_ext_on;
-      cfg_trace_q <= cfg_trace;
-      cfg_watchdog_q <= cfg_watchdog;
+      straps_q <= straps;
 `ifdef IMAP_MUTANTS
       mutant_q <= mutant;
 `endif
     end
 
-  imap_cp #(
-      .P(P),
-      .MEM_BYTES(MEM_BYTES),
-      .EXT_BYTES(EXT_BYTES),
-      .NREGS(NREGS),
-      .MASK_DEPTH(MASK_DEPTH),
-      .CALL_DEPTH(CALL_DEPTH),
-      .IMEM_WORDS(IMEM_WORDS),
-      .XROWS(XROWS),
-      .PHASES(PHASES)
-  ) u_cp (
-      .c_alu(c_alu_q),
-      .c_mem(c_mem_q),
-      .c_indirect_extra(c_indirect_extra_q),
-      .c_ring_hop(c_ring_hop_q),
-      .c_mask(c_mask_q),
-      .c_status(c_status_q),
-      .c_cp(c_cp_q),
-      .c_branch_taken(c_branch_taken_q),
-      .c_video_line(c_video_line_q),
-      .c_xfer_setup(c_xfer_setup_q),
-      .c_ext_bpc(c_ext_bpc_q),
-      .c_ext_beat(c_ext_beat_q),
-      .c_shift_bits(c_shift_bits_q),
-      .c_minmax_extra(c_minmax_extra_q),
-      .cfg_prog_len(cfg_prog_len_q),
-      .cfg_pe_regs(cfg_pe_regs_q),
-      .cfg_mask_depth(cfg_mask_depth_q),
-      .cfg_call_depth(cfg_call_depth_q),
-      .cfg_indirect(cfg_indirect_q),
-      .cfg_ext_on(cfg_ext_on_q),
-      .cfg_trace(cfg_trace_q),
-      .cfg_watchdog(cfg_watchdog_q),
+  imap_cp #(`IMAP_PARAMS_PASS) u_cp (
+      .straps(straps_q),
 `ifdef IMAP_MUTANTS
       .mutant(mutant_q),
 `endif

@@ -12,7 +12,7 @@
 module imap_cp_monitor (
     input logic clk,
     input logic rst_n,
-    input logic cfg_trace,
+    input imap_pkg::straps_t straps,
     input logic run_q,
     input logic x_v,
     input logic x_first,
@@ -43,7 +43,7 @@ module imap_cp_monitor (
     if (rst_n) begin
       if (x_v && x_first && x_flt != imap_pkg::FLT_NONE && run_q)
         imap_rtl_fault(int'(x_flt), int'(x_pc), mcycle, int'(x_fpe), x_fad);
-      if (x_commit && cfg_trace) begin
+      if (x_commit && straps.cfg_trace) begin
         if (x_op == imap_pkg::OP_CST) imap_rtl_param_write(int'(x_addr[7:0]), int'(creg[x_ir[11:8]]));
         imap_rtl_retire(
             instret, int'(x_pc), x_ir, x_cyc0, x_zn ? mcycle : mcycle + 64'd1,

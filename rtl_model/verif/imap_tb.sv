@@ -3,20 +3,13 @@
 // configuration): the chip (rtl_model/hdl/imap_top.sv, instance u_chip) and
 // the board model next to it (imap_board.sv, instance u_board: external
 // memory, camera / display). Its ports are the ones the SystemC bench binds
-// (model_impl.hpp): clock, reset, the host port, the straps and done. The
+// (model_impl.hpp): clock, reset, the host port, the straps and done (one
+// port per field of imap_pkg::host_t / straps_t, packed below). The
 // retire monitor (imap_cp_monitor.sv) is bound into the chip's CP below; the
 // design tree does not reference this folder.
 module imap_tb
 #(
-    parameter int P = 8,
-    parameter int MEM_BYTES = 1024,
-    parameter int EXT_BYTES = 65536,
-    parameter int NREGS = 16,
-    parameter int MASK_DEPTH = 8,
-    parameter int CALL_DEPTH = 16,
-    parameter int IMEM_WORDS = 65536,
-    parameter int XROWS = 8,
-    parameter int PHASES = 256
+`include "imap_params.svh"
 ) (
     input logic clk,
     input logic rst_n,
@@ -63,17 +56,19 @@ module imap_tb
   logic [P*XROWS*8-1:0] rbus;
   logic [XROWS*8-1:0] rrow[P];
 
-  imap_top #(
-      .P(P),
-      .MEM_BYTES(MEM_BYTES),
-      .EXT_BYTES(EXT_BYTES),
-      .NREGS(NREGS),
-      .MASK_DEPTH(MASK_DEPTH),
-      .CALL_DEPTH(CALL_DEPTH),
-      .IMEM_WORDS(IMEM_WORDS),
-      .XROWS(XROWS),
-      .PHASES(PHASES)
-  ) u_chip (.*);
+  // the host port and the straps, packed as the chip takes them (the
+  // fields of imap_pkg::host_t / straps_t, in their order)
+  imap_pkg::host_t host;
+  imap_pkg::straps_t straps;
+  assign host = '{host_we, host_sel, host_addr, host_data};
+  assign straps = '{
+          c_alu, c_mem, c_indirect_extra, c_ring_hop, c_mask, c_status, c_cp, c_branch_taken,
+          c_video_line, c_xfer_setup, c_ext_bpc, c_ext_beat, c_shift_bits, c_minmax_extra,
+          cfg_prog_len, cfg_pe_regs, cfg_mask_depth, cfg_call_depth, cfg_indirect, cfg_ext_on,
+          cfg_watchdog, cfg_trace
+      };
+
+  imap_top #(`IMAP_PARAMS_PASS) u_chip (.*);
 
   imap_board #(
       .P(P),
