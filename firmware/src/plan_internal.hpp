@@ -1,0 +1,77 @@
+// The planner's internal interface (not part of include/imap/firmware): the
+// steps and helpers one of its files decides and another uses. The frame
+// plan (plan.cpp: checks, batches, rows, spill layout) starts from the
+// forward plan (plan_forward.cpp: columns and passes, its fixed regions from
+// plan_memory.cpp, its pointer columns from plan_pointers.cpp) and adds the
+// re-layout geometry (plan_relayout.cpp); plan_prelude.cpp writes and
+// assembles the generated source.
+#pragma once
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+
+#include "imap/firmware/plan.hpp"
+
+namespace imap::firmware::detail {
+
+inline constexpr int kNever = INT_MAX;  // an address that never holds pointers
+
+inline int ceil_div(int a, int b) {
+    return (a + b - 1) / b;
+}
+
+// The local memory the planner uses per PE: mem_bytes, at most 1 MiB.
+inline int plan_mem(const isa::MachineConfig& cfg) {
+    return static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
+}
+
+// ---- plan.cpp ----
+// The largest match cost (SPEC A.9): the window's terms times the largest pixel term.
+int64_t wm_max(const golden::Params& p);
+// Refuses a cost spread beyond the 16-bit costs' range (kMaxSpread).
+void check_range(const golden::Params& p);
+// Refuses the SPEC A.9 options the firmware does not run (census_ok: the
+// full firmware, else the forward-pass test layout).
+void check_options(const golden::Params& p, bool census_ok);
+
+// ---- plan_forward.cpp ----
+// The forward plan of scanlines of length N; `tiny`: every pointer table in
+// the external memory (arrays of 2 to 5 PEs with the vote).
+ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
+                              bool tiny, bool census_ok);
+// Whether pass `ps` computes slots of kind p.
+inline bool runs_on(const ForwardPlan& f, const ForwardPass& ps, int p) {
+    return (ps.kind == p || ps.kind == -1) && ps.k <= f.K[p];
+}
+
+// ---- plan_memory.cpp ----
+// The fixed regions of the per-PE memory: constant block, line buffers, the
+// census codes and bt bounds beside them, the window's copies, the cost and
+// window planes, up to the pointer region at f.preg. FirmwareError when they
+// do not fit mem_bytes.
+void place_regions(ForwardPlan& f, const golden::Params& p, const isa::MachineConfig& cfg);
+
+// ---- plan_pointers.cpp ----
+// Places the pointer columns, the output line and the spills and reloads in
+// the local memory (the fewest spilled columns, or with `tiny` every table in the
+// external memory); FirmwareError naming the least local memory that would do,
+// or the external memory the spills need.
+void place_columns(ForwardPlan& f, const isa::MachineConfig& cfg, bool tiny);
+// Column k's pointer bytes (the widest of its passes) and the external
+// address they were spilled to (-1: on chip).
+struct ColumnBytes {
+    int size = 0, ext = -1;
+};
+ColumnBytes column_bytes(const ForwardPlan& f, int k);
+
+// ---- plan_relayout.cpp ----
+int seg_width(const FramePlan& fp, int g);
+// Source lanes [a, a + n) of segment g (width W) whose pixels go to kind `kind` (input).
+void in_lanes(const ForwardPlan& f, int P, int g, int W, int kind, int* a, int* n);
+// The re-layout geometry of a frame with its batches and segments planned (fp.rl).
+void plan_relayout(FramePlan& fp);
+// The displacements sigma = sender - receiver of segment g's output items.
+void out_displacements(const FramePlan& fp, int g, int* smin, int* smax);
+
+}  // namespace imap::firmware::detail

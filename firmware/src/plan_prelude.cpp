@@ -1,0 +1,384 @@
+// The generated prelude of the DP firmware and its assembly, from a frame
+// plan (or a forward plan for the test programs): .equ constants for dp.s and
+// the PLAN_* macros, one call per column of the forward pass and the
+// backtrack (FCOL, BCOL, spills and reloads), per line-buffer byte of the
+// window's copies and the bt bounds (AGX, BTX), and per video segment of the
+// re-layout; then the .include of the firmware source. Also the param block
+// and the register groups the waves show as one value.
+#include <algorithm>
+#include <initializer_list>
+#include <sstream>
+
+#include "imap/isa/assembler.hpp"
+#include "plan_internal.hpp"
+
+namespace imap::firmware {
+
+namespace {
+
+using detail::column_bytes;
+using detail::ColumnBytes;
+using detail::in_lanes;
+using detail::seg_width;
+
+struct Equ {
+    const char* name;
+    int64_t value;
+};
+
+void equ(std::ostringstream& os, const char* name, int64_t v) {
+    os << ".equ " << name << " " << v << "\n";
+}
+
+void equs(std::ostringstream& os, std::initializer_list<Equ> list) {
+    for (const Equ& e : list) equ(os, e.name, e.value);
+}
+
+// The output frame: 0 cyclopean, 1 left, 2 right.
+int frame_code(const golden::Params& p) {
+    return p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2;
+}
+
+// The left wavefront's last output position + 1 (the merge band ends there).
+int band_end(const golden::Params& p, const ForwardPlan& f) {
+    if (!f.bidir) return 0;
+    const int fr = frame_code(p);
+    const int e = f.joint ? f.s : f.s - 1;  // the left PE's last event site
+    const int last = fr == 0 ? e + (f.D - 1) / 2 : fr == 1 ? e + f.D - 1 : e;
+    return std::min(f.N, last + 1);
+}
+
+void dp_constants(std::ostringstream& os, const golden::Params& p, const ForwardPlan& f) {
+    equs(os,
+         {
+             {"MODE", f.bidir ? 1 : 0},
+             {"JOINT", f.joint ? 1 : 0},
+             {"JM", f.bidir ? std::min(f.D - 1, f.N - 1 - f.s) : 0},  // top level of site s
+             {"N", f.N},
+             {"D", f.D},
+             {"S", f.s},
+             {"DS", f.ds},
+             {"KM", p.km},
+             {"KB", p.kb},
+             {"GB", p.gb},
+             {"ADMAX", std::min(255, p.ad_max)},
+             {"WO", p.Wo},
+             {"WD", p.Wd},
+             {"FRAME", frame_code(p)},
+             {"VOTE", p.vote ? 1 : 0},
+             {"KMAX", f.kmax},
+             {"KLEFT", f.bidir ? f.K[0] : 0},
+             {"KRIGHT", f.bidir ? f.K[1] : f.K[0]},
+             {"KBLK", f.kblk},
+             {"KBS", f.kbs},
+             {"RB", f.rb},
+             {"KR", f.kr},
+             {"KL", f.kl},
+             {"COSTL", f.costl},
+             {"COSTH", f.costh},
+             {"XO", f.xo},
+             {"XM", f.xm},
+             {"XD", f.xd},
+             {"KPP", f.kpp},
+             {"MAP", f.map},
+             {"TINY", f.tiny ? 1 : 0},
+             {"TTABLE", f.ext_table},
+             {"TBUF0", f.tiny_buf[0]},
+             {"TBUF1", f.tiny_buf[1]},
+             {"TBUF2", f.tiny_buf[2]},
+             {"BANDE", band_end(p, f)},
+             {"KC", f.kc},
+             {"CENSUS", f.census},
+             {"CO", f.co},
+             {"AGG", f.agg},
+             {"RBR", f.rbr},
+             {"RBL", f.rbl},
+             {"CNO", f.agg > 0 ? f.cxo : f.co},
+             {"BT", f.bt ? 1 : 0},
+             {"BLO", f.blo},
+             {"BHI", f.bhi},
+             {"AGGR", f.rows ? 1 : 0},
+             {"AGGY", f.aggy},
+             {"WL", f.wl},
+             {"WH", f.wh},
+             {"PMAX", f.pmax},
+             {"H8", f.h8 ? 1 : 0},
+             {"D8", f.d8 ? 1 : 0},
+             {"EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0},
+         });
+}
+
+// The frame's own constants: the machine, the ROI, the batches (dp.s
+// BATCH_LINES / BATCH_OUT: every batch but the last outputs BSTRIDE lines;
+// with BOVERLAP it also holds one line either side), the rows and the
+// re-layout.
+void frame_constants(std::ostringstream& os, const FramePlan& fp) {
+    const bool multi = !fp.f.tiny && fp.batches.size() > 1;
+    equs(os, {
+                 {"P", fp.P},
+                 {"HROI", fp.roi.h},
+                 {"X0", fp.roi.x0},
+                 {"Y0", fp.roi.y0},
+                 {"NSEG", fp.nseg},
+                 {"LPB", fp.lpb},
+                 {"BSTRIDE", multi ? fp.batches[0].out_count : fp.roi.h},
+                 {"BOVERLAP", multi && fp.batches[1].out_first == 1 ? 1 : 0},
+                 {"HBMAX", fp.hbmax},
+                 {"INL", fp.inl},
+                 {"INR", fp.inr},
+                 {"OUT", fp.out},
+                 {"SPLIT_IN", fp.split_in ? 1 : 0},
+                 {"CINL", fp.cinl},
+                 {"CINR", fp.cinr},
+                 {"RMOD", fp.rl.modular ? 1 : 0},
+                 {"BP", fp.rl.base},
+                 {"UR", fp.rl.ur},
+                 {"UL", fp.rl.ul},
+                 {"SKEW", fp.rl.skew ? 1 : 0},
+                 {"SKI", fp.rl.skew_in},
+                 {"SKO", fp.rl.skew_out},
+                 {"SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin},
+                 {"DMIN", fp.rl.dmin},
+                 {"DMAX", fp.rl.dmax},
+                 {"SPARE", fp.spare ? 1 : 0},
+             });
+}
+
+// Site of R'[m] / L'[m] of a kind (docs/firmware.md, sections 1 and 10).
+int site_r(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N - m;
+    return kind == 0 ? f.s - m : f.s + m;
+}
+int site_l(const ForwardPlan& f, int kind, int m) {
+    if (!f.bidir) return m - 1;
+    if (f.joint) return kind == 0 ? m - 1 : f.N + f.D - 1 - m;
+    return kind == 0 ? f.s + f.D - 1 - m : f.s + m;
+}
+// Where the input re-layout stored pixel X of R / L (the holder kind: X <= s
+// on kind 0, X > s on kind 1; relayout.inc, RIN_RECV_INIT).
+int holder(const ForwardPlan& f, int X) {
+    return f.bidir && X > f.s ? 1 : 0;
+}
+int addr_r(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb - 1 - X;
+    if (f.joint) return h == 0 ? f.rb - 1 - X : f.rb - f.N + X;
+    return h == 0 ? f.rb - f.s + X : f.rb + f.s - X;
+}
+int addr_l(const ForwardPlan& f, int X) {
+    const int h = holder(f, X);
+    if (!f.bidir) return f.rb + 2 + X;
+    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
+    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+}
+
+// One `op` line per line-buffer byte the node reads (R' then L', from level
+// `first` to the buffer's top + agg): its destination address, then for each
+// kind (the same one twice in single mode) the fields fields(img, kind, X)
+// writes for the byte's site X, clamped into the ROI.
+template <class Fields>
+void buffer_lines(std::ostringstream& os, const ForwardPlan& f, const char* op, int first,
+                  Fields&& fields) {
+    for (int img = 0; img < 2; ++img) {
+        const int top = img == 0 ? f.kr : f.kl;
+        for (int m = first; m <= top + f.agg; ++m) {
+            os << "        " << op << " " << (img == 0 ? f.rbr - m : f.rbl + m);
+            for (int kind = 0; kind < 2; ++kind) {
+                const int kk = f.kinds == 2 ? kind : 0;
+                const int site = img == 0 ? site_r(f, kk, m) : site_l(f, kk, m);
+                fields(img, kk, std::max(0, std::min(f.N - 1, site)));
+            }
+            os << "\n";
+        }
+    }
+}
+
+// The address of pixel X of image img as the re-layout stored it, and
+// whether it is kind `kind`'s own byte (else the partner's, one ring hop away).
+void source_field(std::ostringstream& os, const ForwardPlan& f, int img, int kind, int X) {
+    os << ", " << (img == 0 ? addr_r(f, X) : addr_l(f, X)) << ", "
+       << (holder(f, X) == kind ? 1 : 0);
+}
+
+// The extended, clamped line buffers of the aggregation window
+// (AGG_EXTEND in census.inc): one AGX line per destination byte, with the
+// source of each kind.
+void agg_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_AGG\n";
+    if (f.agg > 0)
+        buffer_lines(os, f, "AGX", 1 - f.agg,
+                     [&](int img, int kind, int X) { source_field(os, f, img, kind, X); });
+    os << ".endm\n";
+}
+
+// The Birchfield-Tomasi bounds (BT_BOUNDS in census.inc): one BTX line per
+// byte the node reads (the line buffers, or the window's copies), with the
+// sources of the three pixels X-1, X, X+1 of its site X (clamped into the
+// ROI, as docs/golden.md requires) on each kind.
+void bt_macros(std::ostringstream& os, const ForwardPlan& f) {
+    os << ".macro PLAN_BT\n";
+    if (f.bt)
+        buffer_lines(os, f, "BTX", f.agg > 0 ? 1 - f.agg : 0, [&](int img, int kind, int X) {
+            for (int u = -1; u <= 1; ++u)
+                source_field(os, f, img, kind, std::max(0, std::min(f.N - 1, X + u)));
+        });
+    os << ".endm\n";
+}
+
+// spare_base >= 0: the spilled columns go to the spare PE's memory (RSPILL /
+// RRELOAD over one ring hop) instead of xst / xld: spill byte e at
+// spare_base + e, skipping the map (cleared by every PE before the backtrack).
+void spare_transfer(std::ostringstream& os, const ForwardPlan& f, int spare_base, const char* op,
+                    const Transfer& t) {
+    const int cut = f.map - spare_base;  // spill bytes below the map
+    auto emit = [&](int local, int e, int len) {
+        if (len > 0)
+            os << "        " << op << " " << local << ", " << spare_base + e + (e >= cut ? f.N : 0)
+               << ", " << len << "\n";
+    };
+    if (t.ext < cut && t.ext + t.len > cut) {
+        emit(t.local, t.ext, cut - t.ext);
+        emit(t.local + cut - t.ext, cut, t.ext + t.len - cut);
+    } else {
+        emit(t.local, t.ext, t.len);
+    }
+}
+
+// A spill (after its pass) or reload (before its column's backtrack): to or
+// from the external memory (FSPILL / FRELOAD), or with spare_base >= 0 the
+// spare PE's memory (RSPILL / RRELOAD).
+void transfer(std::ostringstream& os, const ForwardPlan& f, int spare_base, bool spill,
+              const Transfer& t) {
+    if (spare_base >= 0)
+        spare_transfer(os, f, spare_base, spill ? "RSPILL" : "RRELOAD", t);
+    else
+        os << "        " << (spill ? "FSPILL" : "FRELOAD") << " " << t.local << ", " << t.ext
+           << ", " << t.len << "\n";
+}
+
+// PLAN_FORWARD: one FCOL per pass, each followed by the spills due after it.
+void forward_macro(std::ostringstream& os, const ForwardPlan& f, int spare_base) {
+    os << ".macro PLAN_FORWARD\n";
+    size_t si = 0;
+    for (size_t i = 0; i < f.passes.size(); ++i) {
+        const ForwardPass& ps = f.passes[i];
+        os << "        FCOL " << ps.k << ", " << ps.kind << ", " << ps.jlo << ", " << ps.n << ", "
+           << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << ", " << ps.rfull
+           << ", " << ps.rinc << "\n";
+        while (si < f.spills.size() && f.spills[si].after == static_cast<int>(i))
+            transfer(os, f, spare_base, true, f.spills[si++]);
+    }
+    os << "        FEND\n.endm\n";
+}
+
+// PLAN_BACK: per column from the last, its reloads (TRELOAD of the whole
+// column on arrays of 2 to 5 PEs), then BCOL with the column's address, each
+// kind's first level and whether the kind has the column.
+void back_macro(std::ostringstream& os, const ForwardPlan& f, int spare_base) {
+    os << ".macro PLAN_BACK\n";
+    for (int k = f.kmax; k >= 1; --k) {
+        if (f.tiny) {
+            const ColumnBytes col = column_bytes(f, k);
+            if (col.ext >= 0) os << "        TRELOAD " << col.ext << ", " << col.size << "\n";
+        }
+        for (const Transfer& t : f.reloads)
+            if (t.after == k) transfer(os, f, spare_base, false, t);
+        int addr = -1, maxb = 0, base[2] = {0, 0}, act[2] = {0, 0};
+        for (int p = 0; p < f.kinds; ++p) {
+            const PointerColumn& c = f.ptr[p][k];
+            if (k > f.K[p] || c.bytes == 0) continue;
+            addr = c.addr;
+            base[p] = c.base;
+            act[p] = 1;
+            maxb = std::max(maxb, c.bytes);
+        }
+        os << "        BCOL " << k << ", " << addr << ", " << base[0] << ", " << base[1] << ", "
+           << maxb - 1 << ", " << act[0] << ", " << act[1] << "\n";
+    }
+    os << ".endm\n";
+}
+
+void dp_macros(std::ostringstream& os, const ForwardPlan& f, int spare_base = -1) {
+    agg_macros(os, f);
+    bt_macros(os, f);
+    forward_macro(os, f, spare_base);
+    os << ".macro PLAN_RELOAD\n.endm\n";
+    back_macro(os, f, spare_base);
+}
+
+// Per-segment re-layout calls: PLAN_IN with the segment, its width and the
+// receiver lanes of both kinds; PLAN_OUT with the output displacements.
+void relayout_macros(std::ostringstream& os, const FramePlan& fp) {
+    os << ".macro PLAN_IN\n";
+    for (int g = 0; g < fp.nseg; ++g) {
+        const int W = seg_width(fp, g);
+        int a0, n0, a1 = 0, n1 = 0;
+        in_lanes(fp.f, fp.P, g, W, 0, &a0, &n0);
+        if (fp.f.bidir) in_lanes(fp.f, fp.P, g, W, 1, &a1, &n1);
+        os << (fp.f.census > 0 ? "        RELAYOUT_IN_CENSUS " : "        RELAYOUT_IN ") << g
+           << ", " << W << ", " << a0 << ", " << n0 << ", " << a1 << ", " << n1 << "\n";
+    }
+    os << ".endm\n";
+    os << ".macro PLAN_OUT\n";
+    for (int g = 0; g < fp.nseg; ++g) {
+        int smin, smax;
+        detail::out_displacements(fp, g, &smin, &smax);
+        os << "        RELAYOUT_OUT " << g << ", " << seg_width(fp, g) << ", " << smin << ", "
+           << smax << "\n";
+    }
+    os << ".endm\n";
+}
+
+}  // namespace
+
+std::string frame_source(const golden::Params& p, const FramePlan& fp) {
+    std::ostringstream os;
+    os << "; Generated by the firmware planner (firmware/src/plan.cpp) for one parameter set:\n"
+          "; the constants and the per-column plan of dp.s (docs/firmware.md).\n";
+    dp_constants(os, p, fp.f);
+    frame_constants(os, fp);
+    dp_macros(os, fp.f, fp.spare ? fp.spare_base : -1);
+    relayout_macros(os, fp);
+    os << ".include \"dp.s\"\n";
+    return os.str();
+}
+
+isa::Program assemble_frame(const golden::Params& p, const FramePlan& fp) {
+    isa::AsmOptions o;
+    o.files = &firmware_sources();
+    return isa::assemble_string(frame_source(p, fp), firmware_dir() + "/dp_plan.s", o);
+}
+
+isa::Program assemble_test(const golden::Params& p, const ForwardPlan& f, const std::string& file,
+                           int lines, int P) {
+    std::ostringstream os;
+    dp_constants(os, p, f);
+    equs(os, {{"P", P}, {"HB", lines}, {"HROI", lines}});
+    dp_macros(os, f);
+    os << ".include \"" << file << "\"\n";
+    isa::AsmOptions o;
+    o.files = &firmware_sources();
+    return isa::assemble_string(os.str(), firmware_dir() + "/test_plan.s", o);
+}
+
+std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
+    std::vector<std::pair<int, uint32_t>> v;
+    v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));
+    return v;
+}
+
+const std::vector<WaveGroup>& wave_groups() {
+    // dp_forward.inc (NODE): the 16-bit shifted costs V of the node being
+    // computed, two byte registers each: r1:r2 and r3:r4 take turns as M
+    // (V(k-1, j), then the best of M and D) and Q (V(k-1, j+1)); r5:r6 the
+    // running V(k, j) of the O chain (docs/firmware.md, section 2).
+    static const std::vector<WaveGroup> g = {
+        {"fwd_pair1", "forward", {1, 2}},
+        {"fwd_pair2", "forward", {3, 4}},
+        {"fwd_run", "forward", {5, 6}},
+    };
+    return g;
+}
+
+}  // namespace imap::firmware
