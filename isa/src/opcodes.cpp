@@ -1,6 +1,9 @@
-// The opcode table, static word validation and the run-time lane dispatchers.
+// The opcode table, the per-format rules (operand syntax, static word
+// validation: which fields are registers, bases or zero, immediate ranges)
+// and the run-time lane dispatchers.
 #include <array>
 #include <string>
+#include <utility>
 
 #include "imap/isa/encoding.hpp"
 #include "imap/isa/opcodes.hpp"
@@ -75,66 +78,140 @@ const std::vector<OpInfo>& all_ops() {
     return table();
 }
 
-const char* operand_syntax(Format f) {
-    switch (f) {
-        case Format::None:
-            return "";
-        case Format::Rrr:
-            return "rd, ra, rb";
-        case Format::Rri8:
-            return "rd, ra, #imm8";
-        case Format::Rr:
-            return "rd, ra";
-        case Format::Ri8:
-            return "rd, #imm8";
-        case Format::Rsh:
-            return "rd, ra, #n";
-        case Format::Cmp:
-            return "ra, rb";
-        case Format::Cmpi:
-            return "ra, #imm8";
-        case Format::R:
-            return "rd";
-        case Format::Rc:
-            return "rd, cA";
-        case Format::Rck:
-            return "rd, cA, #k";
-        case Format::Rk:
-            return "rd, #k";
-        case Format::Ld:
-            return "rd, [cB + off]";
-        case Format::Ldx:
-            return "rd, [ra:rb + cN + off]";
-        case Format::Xfer:
-            return "[cB + off], ext[cA], cD";
-        case Format::Ring:
-            return "rd, ra, #k";
-        case Format::Stat:
-            return "cD";
-        case Format::Ci:
-            return "cD, #imm32";
-        case Format::Cc:
-            return "cD, cA";
-        case Format::Ccc:
-            return "cD, cA, cB";
-        case Format::Cci:
-            return "cD, cA, #imm32";
-        case Format::Csh:
-            return "cD, cA, #n";
-        case Format::Cmem:
-            return "cD, [cB + off]";
-        case Format::J:
-            return "target";
-        case Format::Bcc:
-            return "cA, cB, target";
-        case Format::B1:
-            return "cA, target";
-        case Format::Video:
-            return "#port, [cB + off], cY, cX";
-        case Format::Phase:
-            return "#id";
+namespace {
+
+// How check_word validates a register field of a format.
+enum class Field : uint8_t {
+    Zero,     // unused: must be 0
+    Pe,       // r0..r63
+    Cp,       // c0..c15
+    Base,     // c0..c15, or kNoBase for an absolute address
+    Any,      // not checked (vin/vout ra: cY | cX << 4)
+    LdxHigh,  // ldx/stx rb: r0..r63, or 0 when the imm flags say no high byte
+    Port,     // video port 0..1
+};
+// How check_word validates the imm field of a format.
+enum class Imm : uint8_t {
+    Zero,      // unused: must be 0
+    Any,       // 32-bit value, offset or target
+    Range,     // lo..hi
+    LdxFlags,  // ldx/stx offset and flags
+};
+
+// Each format's operand syntax (docs, messages) and the static rules of its
+// fields, in Format order.
+struct FormatRules {
+    Format format;
+    const char* syntax;
+    Field rd, ra, rb;
+    Imm imm;
+    uint32_t lo = 0, hi = 0;
+};
+using F = Field;
+constexpr FormatRules kFormats[] = {
+    {Format::None, "", F::Zero, F::Zero, F::Zero, Imm::Zero},
+    {Format::Rrr, "rd, ra, rb", F::Pe, F::Pe, F::Pe, Imm::Zero},
+    {Format::Rri8, "rd, ra, #imm8", F::Pe, F::Pe, F::Zero, Imm::Range, 0, 255},
+    {Format::Rr, "rd, ra", F::Pe, F::Pe, F::Zero, Imm::Zero},
+    {Format::Ri8, "rd, #imm8", F::Pe, F::Zero, F::Zero, Imm::Range, 0, 255},
+    {Format::Rsh, "rd, ra, #n", F::Pe, F::Pe, F::Zero, Imm::Range, 0, 7},
+    {Format::Cmp, "ra, rb", F::Zero, F::Pe, F::Pe, Imm::Zero},
+    {Format::Cmpi, "ra, #imm8", F::Zero, F::Pe, F::Zero, Imm::Range, 0, 255},
+    {Format::R, "rd", F::Pe, F::Zero, F::Zero, Imm::Zero},
+    {Format::Rc, "rd, cA", F::Pe, F::Cp, F::Zero, Imm::Zero},
+    {Format::Rck, "rd, cA, #k", F::Pe, F::Cp, F::Zero, Imm::Range, 0, 3},
+    {Format::Rk, "rd, #k", F::Pe, F::Zero, F::Zero, Imm::Range, 0, 3},
+    {Format::Ld, "rd, [cB + off]", F::Pe, F::Zero, F::Base, Imm::Any},
+    {Format::Ldx, "rd, [ra:rb + cN + off]", F::Pe, F::Pe, F::LdxHigh, Imm::LdxFlags},
+    {Format::Xfer, "[cB + off], ext[cA], cD", F::Cp, F::Cp, F::Base, Imm::Any},
+    {Format::Ring, "rd, ra, #k", F::Pe, F::Pe, F::Zero, Imm::Range, 1, 65535},
+    {Format::Stat, "cD", F::Cp, F::Zero, F::Zero, Imm::Zero},
+    {Format::Ci, "cD, #imm32", F::Cp, F::Zero, F::Zero, Imm::Any},
+    {Format::Cc, "cD, cA", F::Cp, F::Cp, F::Zero, Imm::Zero},
+    {Format::Ccc, "cD, cA, cB", F::Cp, F::Cp, F::Cp, Imm::Zero},
+    {Format::Cci, "cD, cA, #imm32", F::Cp, F::Cp, F::Zero, Imm::Any},
+    {Format::Csh, "cD, cA, #n", F::Cp, F::Cp, F::Zero, Imm::Range, 0, 31},
+    {Format::Cmem, "cD, [cB + off]", F::Cp, F::Zero, F::Base, Imm::Any},
+    {Format::J, "target", F::Zero, F::Zero, F::Zero, Imm::Any},
+    {Format::Bcc, "cA, cB, target", F::Zero, F::Cp, F::Cp, Imm::Any},
+    {Format::B1, "cA, target", F::Zero, F::Cp, F::Zero, Imm::Any},
+    {Format::Video, "#port, [cB + off], cY, cX", F::Port, F::Any, F::Base, Imm::Any},
+    {Format::Phase, "#id", F::Zero, F::Zero, F::Zero, Imm::Range, 0, 65535},
+};
+static_assert(one_row_per_format(kFormats), "kFormats: one row per Format, in Format order");
+
+const FormatRules& rules(Format f) {
+    return kFormats[static_cast<size_t>(f)];
+}
+
+// The first rule a word breaks ("" when none), in field order rd, ra, rb, imm.
+class WordCheck {
+  public:
+    WordCheck(const Word& x, std::string mn) : x_(x), mn_(std::move(mn)) {}
+
+    std::string run(const FormatRules& r) {
+        field("rd", x_.rd, r.rd);
+        field("ra", x_.ra, r.ra);
+        field("rb", x_.rb, r.rb);
+        if (r.imm == Imm::Zero) {
+            zero("imm", x_.imm);
+        } else if (r.imm == Imm::Range) {
+            if (why_.empty() && (x_.imm < r.lo || x_.imm > r.hi))
+                why_ = mn_ + ": immediate " + std::to_string(x_.imm) + " out of range " +
+                       std::to_string(r.lo) + ".." + std::to_string(r.hi);
+        } else if (r.imm == Imm::LdxFlags) {
+            zero("imm bits 30..31", x_.imm >> 30);
+            if (!(x_.imm & kLdxUseCp))
+                zero("imm bits 24..27 (no CP register)", (x_.imm >> 24) & 15);
+        }
+        return why_;
     }
-    return "?";
+
+  private:
+    void zero(const char* f, uint32_t v) {
+        if (why_.empty() && v != 0)
+            why_ = mn_ + ": unused field " + f + " must be 0 (is " + std::to_string(v) + ")";
+    }
+    void field(const char* f, uint8_t v, Field use) {
+        if (!why_.empty()) return;
+        switch (use) {
+            case Field::Zero:
+                zero(f, v);
+                break;
+            case Field::LdxHigh:
+                field(f, v, (x_.imm & kLdxNoHigh) ? Field::Zero : Field::Pe);
+                break;
+            case Field::Pe:
+                if (v >= kMaxPeRegs)
+                    not_a(f, v, "a PE register (r0..r" + std::to_string(kMaxPeRegs - 1) + ")");
+                break;
+            case Field::Cp:
+                if (v >= kCpRegs) not_a(f, v, "a CP register (c0..c15)");
+                break;
+            case Field::Base:
+                if (v >= kCpRegs && v != kNoBase)
+                    not_a(f, v, "a base (c0..c15, or 128 for an absolute address)");
+                break;
+            case Field::Port:
+                if (v > 1) why_ = mn_ + ": video port " + std::to_string(v) + " out of range 0..1";
+                break;
+            case Field::Any:
+                break;
+        }
+    }
+    void not_a(const char* f, uint8_t v, const std::string& what) {
+        why_ = mn_ + ": field " + f + " = " + std::to_string(v) + " is not " + what;
+    }
+
+    const Word x_;
+    const std::string mn_;
+    std::string why_;
+};
+
+}  // namespace
+
+const char* operand_syntax(Format f) {
+    return rules(f).syntax;
 }
 
 std::string check_word(uint64_t w) {
@@ -148,197 +225,7 @@ std::string check_word(uint64_t w) {
         return s;
     };
     if (!info) return "unknown opcode " + hex(x.op);
-    const std::string mn(info->mnemonic);
-    std::string why;
-    auto zero = [&](const char* f, uint32_t v) {
-        if (why.empty() && v != 0)
-            why = mn + ": unused field " + f + " must be 0 (is " + std::to_string(v) + ")";
-    };
-    auto pe = [&](const char* f, uint8_t v) {
-        if (why.empty() && v >= kMaxPeRegs)
-            why = mn + ": field " + f + " = " + std::to_string(v) + " is not a PE register (r0..r" +
-                  std::to_string(kMaxPeRegs - 1) + ")";
-    };
-    auto cp = [&](const char* f, uint8_t v) {
-        if (why.empty() && v >= kCpRegs)
-            why =
-                mn + ": field " + f + " = " + std::to_string(v) + " is not a CP register (c0..c15)";
-    };
-    auto base = [&](const char* f, uint8_t v) {
-        if (why.empty() && v >= kCpRegs && v != kNoBase)
-            why = mn + ": field " + f + " = " + std::to_string(v) +
-                  " is not a base (c0..c15, or 128 for an absolute address)";
-    };
-    auto imm = [&](uint32_t lo, uint32_t hi) {
-        if (why.empty() && (x.imm < lo || x.imm > hi))
-            why = mn + ": immediate " + std::to_string(x.imm) + " out of range " +
-                  std::to_string(lo) + ".." + std::to_string(hi);
-    };
-    switch (info->format) {
-        case Format::None:
-            zero("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Rrr:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            pe("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Rri8:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 255);
-            break;
-        case Format::Rr:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Ri8:
-            pe("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 255);
-            break;
-        case Format::Rsh:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 7);
-            break;
-        case Format::Cmp:
-            zero("rd", x.rd);
-            pe("ra", x.ra);
-            pe("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Cmpi:
-            zero("rd", x.rd);
-            pe("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 255);
-            break;
-        case Format::R:
-            pe("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Rc:
-            pe("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Rck:
-            pe("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 3);
-            break;
-        case Format::Rk:
-            pe("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 3);
-            break;
-        case Format::Ld:
-            pe("rd", x.rd);
-            zero("ra", x.ra);
-            base("rb", x.rb);
-            break;
-        case Format::Ldx:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            if (x.imm & kLdxNoHigh)
-                zero("rb", x.rb);
-            else
-                pe("rb", x.rb);
-            zero("imm bits 30..31", x.imm >> 30);
-            if (!(x.imm & kLdxUseCp)) zero("imm bits 24..27 (no CP register)", (x.imm >> 24) & 15);
-            break;
-        case Format::Xfer:
-            cp("rd", x.rd);
-            cp("ra", x.ra);
-            base("rb", x.rb);
-            break;
-        case Format::Ring:
-            pe("rd", x.rd);
-            pe("ra", x.ra);
-            zero("rb", x.rb);
-            imm(1, 65535);
-            break;
-        case Format::Stat:
-            cp("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Ci:
-            cp("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            break;
-        case Format::Cc:
-            cp("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Ccc:
-            cp("rd", x.rd);
-            cp("ra", x.ra);
-            cp("rb", x.rb);
-            zero("imm", x.imm);
-            break;
-        case Format::Cci:
-            cp("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            break;
-        case Format::Csh:
-            cp("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 31);
-            break;
-        case Format::Cmem:
-            cp("rd", x.rd);
-            zero("ra", x.ra);
-            base("rb", x.rb);
-            break;
-        case Format::J:
-            zero("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            break;
-        case Format::Bcc:
-            zero("rd", x.rd);
-            cp("ra", x.ra);
-            cp("rb", x.rb);
-            break;
-        case Format::B1:
-            zero("rd", x.rd);
-            cp("ra", x.ra);
-            zero("rb", x.rb);
-            break;
-        case Format::Video:
-            if (x.rd > 1) why = mn + ": video port " + std::to_string(x.rd) + " out of range 0..1";
-            base("rb", x.rb);
-            break;
-        case Format::Phase:
-            zero("rd", x.rd);
-            zero("ra", x.ra);
-            zero("rb", x.rb);
-            imm(0, 65535);
-            break;
-    }
-    return why;
+    return WordCheck(x, std::string(info->mnemonic)).run(rules(info->format));
 }
 
 namespace sem {

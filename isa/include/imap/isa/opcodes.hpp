@@ -42,6 +42,16 @@ enum class Format : uint8_t {
     Video,  // #port, [cB + off], cY, cX   port in rd, ra = cY | cX << 4
     Phase,  // #id                     imm = phase id 0..65535
 };
+inline constexpr int kFormatCount = static_cast<int>(Format::Phase) + 1;
+
+// For the static_assert of a table indexed by Format: one row per format, row
+// i for Format(i) (rows[i].format).
+template <class Row, int N>
+constexpr bool one_row_per_format(const Row (&rows)[N]) {
+    for (int i = 0; i < N; ++i)
+        if (static_cast<int>(rows[i].format) != i) return false;
+    return N == kFormatCount;
+}
 
 // Which entry of the cost table an instruction is charged (config.hpp).
 enum class CostClass : uint8_t {
