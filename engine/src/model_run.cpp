@@ -97,6 +97,7 @@ ModelRun run_on_model(const std::string& model, const g::Params& p, const g::Roi
                       const g::ImageView& left, const g::ImageView& right,
                       const isa::MachineConfig& cfg, const WaveOptions* waves,
                       const RtlOptions& rf) {
+    (void)rf;  // used by the rtl and lockstep models only
     ModelRun run;
     run.model = model;
     if (waves && !waves->vcd.empty() && model != "tlm" && model != "core" && model != "rtl")
