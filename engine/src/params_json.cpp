@@ -41,4 +41,37 @@ nlohmann::json machine_param_info_json(const isa::MachineConfig& cfg) {
     return j;
 }
 
+std::string faster_assumptions_text(const isa::MachineConfig& cfg) {
+    std::string s;
+    for (const isa::ParamInfo& p : cfg.list()) {
+        if (!p.faster) continue;
+        if (!s.empty()) s += ", ";
+        s += p.name + " " + p.value + (p.unit.empty() ? "" : " " + p.unit);
+    }
+    return s;
+}
+
+nlohmann::json algo_params_json(const golden::Params& p) {
+    nlohmann::json j = {{"D", p.D},
+                        {"km", p.km},
+                        {"kb", p.kb},
+                        {"gb", p.gb},
+                        {"Wo", p.Wo},
+                        {"Wd", p.Wd},
+                        {"mode", golden::to_string(p.mode)},
+                        {"seed_col", golden::seed_col_string(p.seed_col)},
+                        {"seed_disp", golden::seed_disp_string(p.seed_disp)},
+                        {"vote", p.vote},
+                        {"frame", golden::to_string(p.frame)}};
+    if (golden::uses_options(p)) {  // SPEC A.9 (absent for the paper's algorithm)
+        j["dissim"] = golden::to_string(p.dissim);
+        j["ad_max"] = p.ad_max;
+        j["kc"] = p.kc;
+        j["census"] = p.census;
+        j["agg_rx"] = p.agg_rx;
+        j["agg_ry"] = p.agg_ry;
+    }
+    return j;
+}
+
 }  // namespace imap::engine

@@ -76,10 +76,20 @@ uint64_t RunResult::bound_of(const std::string& phase) const {
     return 0;
 }
 
-double RunResult::efficiency() const {
+double efficiency(uint64_t bound_cycles, uint64_t cycles) {
     return bound_cycles == 0 || cycles == 0
                ? 0.0
                : static_cast<double>(bound_cycles) / static_cast<double>(cycles);
+}
+
+double RunResult::efficiency() const {
+    return engine::efficiency(bound_cycles, cycles);
+}
+
+nlohmann::json bounds_json(const std::vector<std::pair<std::string, uint64_t>>& bounds) {
+    nlohmann::json bd = nlohmann::json::object();
+    for (const auto& [n, c] : bounds) bd[n] = c;
+    return bd;
 }
 
 std::string describe(const RunResult& r) {
@@ -308,9 +318,7 @@ json to_json(const RunResult& r) {
         if (r.area) j["area"] = {{"cells", r.area->cells}, {"memory_bits", r.area->memory_bits}};
         j["pe_utilisation"] = r.pe_utilisation;
         if (r.bound_cycles > 0) {
-            json bd = json::object();
-            for (const auto& [n, c] : r.bounds) bd[n] = c;
-            j["bounds"] = bd;
+            j["bounds"] = bounds_json(r.bounds);
             j["bound_cycles"] = r.bound_cycles;
         }
         if (r.energy) j["energy"] = energy_json(*r.energy);

@@ -153,9 +153,7 @@ json to_json(const Plan& p, const Result& r) {
             if (rr.area)
                 o["area"] = {{"cells", rr.area->cells}, {"memory_bits", rr.area->memory_bits}};
             if (rr.bound_cycles > 0) {
-                json bd = json::object();
-                for (const auto& [n, c] : rr.bounds) bd[n] = c;
-                o["bounds"] = bd;
+                o["bounds"] = bounds_json(rr.bounds);
                 o["bound_cycles"] = rr.bound_cycles;
                 o["efficiency"] = rr.efficiency();
             }

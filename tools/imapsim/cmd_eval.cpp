@@ -1,31 +1,30 @@
 // imapsim eval: Middlebury-style scoring (SPEC A.8) of the golden reference
-// and the OpenCV reference matchers on one scene or on every scene of a folder.
+// and the OpenCV reference matchers on one scene or on every scene of a
+// folder. Its flags, their checks and the printed tables; the scoring is the
+// engine's (imap/engine/eval.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "imap/engine/eval.hpp"
 #include "imap/engine/plot.hpp"
-#include "imap/firmware/plan.hpp"
-#include "imap/firmware/run.hpp"
-#include "imap/golden/estimate.hpp"
 #include "imap/golden/stereo.hpp"
-#include "imap/isa/config.hpp"
-#include "imap/isa/energy.hpp"
 #include "imap/vision/image_io.hpp"
 #include "imap/vision/matchers.hpp"
 #include "imap/vision/perturb.hpp"
 #include "imap/vision/scene.hpp"
 #include "imap/vision/score.hpp"
-#include "imap/vision/synth.hpp"
 
 namespace imapsim {
 
 namespace g = imap::golden;
 namespace v = imap::vision;
+namespace ev = imap::engine::eval;
 namespace plot = imap::engine::plot;
 using nlohmann::json;
 
@@ -45,124 +44,10 @@ struct Row {
     json params;
 };
 
-json matcher_params(const std::string& name, const g::Params& p) {
-    if (name == "golden") {
-        json j = algo_params_json(p);
-        j["frame"] = "left";
-        j["fill"] = true;
-        return j;
-    }
-    const v::OpenCvSettings s = v::opencv_settings(name, p.D);
-    json j = {{"D", p.D},
-              {"numDisparities", s.num_disparities},
-              {"blockSize", s.block_size},
-              {"preFilterCap", s.pre_filter_cap},
-              {"uniquenessRatio", s.uniqueness_ratio},
-              {"disp12MaxDiff", s.disp12_max_diff},
-              {"threads", 1},
-              {"fill", true}};
-    if (name == "opencv-bm") {
-        j["textureThreshold"] = s.texture_threshold;
-    } else {
-        j["P1"] = s.p1;
-        j["P2"] = s.p2;
-        j["speckleWindowSize"] = s.speckle_window;
-        j["speckleRange"] = s.speckle_range;
-        j["mode"] = "MODE_SGBM";
-    }
-    return j;
-}
-
-// Modeled cycles of the headline case (synthetic scene seed 1, 160x128, ROI
-// 16,0,128x128, D = 64, the default machine: 256 PEs at 40 MHz) for the
-// part of `p` the firmware runs (firmware_part: the paper's algorithm with
-// --ad-max and --mode joint), measured on the machine core; -1 when the firmware refuses it.
-// The A.9 options the firmware does not run yet come on top as an estimate.
-struct Modeled {
-    int64_t fw_cycles = -1;  // measured: the firmware running firmware_part(p)
-    double fw_uj = 0;        // its energy per frame (docs/energy.md), from the same run
-    g::OptionCost est;       // estimated: the A.9 options not in the firmware
-    double clock_mhz = 40;
-    bool ok() const { return fw_cycles >= 0; }
-    double fw_ms() const { return static_cast<double>(fw_cycles) / (clock_mhz * 1e3); }
-    double est_ms() const { return static_cast<double>(est.cycles) / (clock_mhz * 1e3); }
-    double total_ms() const { return fw_ms() + est_ms(); }
-};
-
-Modeled modeled_headline(const g::Params& p) {
-    static const v::SynthScene sc = v::make_synth_scene(1, 160, 128);
-    const g::Roi roi{16, 0, 128, 128};
-    const imap::isa::MachineConfig cfg;
-    g::Params q = p;
-    q.D = 64;
-    q.frame = g::Frame::Cyclopean;
-    Modeled m;
-    m.clock_mhz = cfg.clock_mhz;
-    m.est = g::estimate_options(q, roi.w, /*in_firmware=*/true);
-    try {
-        const g::Params pp = imap::firmware::firmware_part(q);
-        const imap::firmware::FramePlan plan = imap::firmware::plan_frame(pp, roi, cfg);
-        const imap::isa::Program prog = imap::firmware::assemble_frame(pp, plan);
-        const imap::firmware::FrameResult r = imap::firmware::run_frame_core(
-            plan, prog, v::view_of(sc.left), v::view_of(sc.right), cfg);
-        m.fw_cycles = static_cast<int64_t>(r.cycles);
-        m.fw_uj = imap::isa::energy_of(r.stats, r.cycles, cfg).total_pj * 1e-6;
-    } catch (const std::exception&) {
-        m.fw_cycles = -1;  // refused (does not fit): shown as "-"
-    }
-    return m;
-}
-
 // imapsim eval --tradeoff: every golden variant and the OpenCV matchers on
 // every scene; one mean row each with the modeled time of the headline case.
 int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int explicit_D) {
-    struct TRow {
-        std::string name, what;
-        bool golden = false;
-        g::Params p;
-        std::vector<v::BadScores> per_scene;
-        v::BadScores mean;
-        double ms = 0;  // matcher wall time, mean over the scenes
-        Modeled model;
-    };
-    std::vector<TRow> rows;
-    for (const auto& var : g::tradeoff_variants()) {
-        TRow r;
-        r.name = var.name;
-        r.what = var.what;
-        r.golden = true;
-        r.p = var.p;
-        rows.push_back(r);
-    }
-    for (const char* name : {"opencv-bm", "opencv-sgbm"}) {
-        TRow r;
-        r.name = name;
-        r.what = "OpenCV reference matcher (docs/scoring.md)";
-        rows.push_back(r);
-    }
-    for (TRow& r : rows) {
-        for (const auto& sc : scenes) {
-            g::Params q = r.golden ? r.p : g::Params{};
-            q.D = explicit_D > 0 ? explicit_D : sc.ndisp;
-            q.frame = g::Frame::Left;
-            double secs = 0;
-            cv::Mat disp;
-            try {
-                disp = v::run_matcher(r.golden ? "golden" : r.name, sc, q, &secs);
-            } catch (const g::ParamError& e) {
-                throw UserError("scene '" + sc.name + "', variant " + r.name + ": " + e.what());
-            }
-            const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
-            r.per_scene.push_back(b);
-            const double n = static_cast<double>(scenes.size());
-            r.mean.nonocc += b.nonocc / n;
-            r.mean.all += b.all / n;
-            r.mean.disc += b.disc / n;
-            r.ms += secs * 1e3 / n;
-        }
-        if (r.golden) r.model = modeled_headline(r.p);
-    }
-
+    const std::vector<ev::TradeoffRow> rows = ev::tradeoff(scenes, explicit_D, o.delta);
     char delta_txt[32];
     std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
     std::printf(
@@ -177,10 +62,10 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
     std::printf("%-16s %7s %7s %7s", "variant", "nonocc", "all", "disc");
     for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
     std::printf(" %8s %8s %9s %9s %8s\n", "fw ms", "+A.9 ms", "total ms", "fw uJ", "cpu ms");
-    for (const TRow& r : rows) {
-        std::printf("%-16s %7.2f %7.2f %7.2f", r.name.c_str(), r.mean.nonocc, r.mean.all,
-                    r.mean.disc);
-        for (const auto& b : r.per_scene) std::printf(" %8.2f", b.nonocc);
+    for (const ev::TradeoffRow& r : rows) {
+        std::printf("%-16s %7.2f %7.2f %7.2f", r.name.c_str(), r.scores.mean.nonocc,
+                    r.scores.mean.all, r.scores.mean.disc);
+        for (const auto& b : r.scores.per_scene) std::printf(" %8.2f", b.nonocc);
         if (!r.golden)
             std::printf(" %8s %8s %9s %9s", "-", "-", "-", "-");
         else if (!r.model.ok())
@@ -188,80 +73,20 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
         else
             std::printf(" %8.2f %8.2f %9.2f %9.3f", r.model.fw_ms(), r.model.est_ms(),
                         r.model.total_ms(), r.model.fw_uj);
-        std::printf(" %8.1f\n", r.ms);
+        std::printf(" %8.1f\n", r.scores.ms);
     }
     std::printf("\nvariants:\n");
-    for (const TRow& r : rows) {
+    for (const ev::TradeoffRow& r : rows) {
         std::printf("  %-16s %s\n", r.name.c_str(), r.what.c_str());
         for (const auto& item : r.model.est.items)
             std::printf("  %-16s   est. %s\n", "", item.c_str());
     }
 
-    if (!o.plot.empty()) {
-        plot::Figure f;
-        f.title =
-            "Mean " + std::string(delta_txt) + " (nonocc) against modeled time, headline case";
-        f.subtitle =
-            "ms = firmware (paper + ad-max + joint, measured) + other A.9 options (estimate); " +
-            std::to_string(scenes.size()) + " scene(s)";
-        f.xlabel = "modeled ms per frame (128x128, D=64, 256 PEs, 40 MHz; partly estimated)";
-        f.ylabel = "mean " + std::string(delta_txt) + " % (nonocc)";
-        std::vector<std::pair<double, double>> pts;
-        for (const TRow& r : rows) {
-            if (!r.golden || !r.model.ok()) continue;
-            f.series.push_back({r.name, {r.model.total_ms()}, {r.mean.nonocc}});
-            pts.push_back({r.model.total_ms(), r.mean.nonocc});
-        }
-        // Pareto front: no other point is both faster and better.
-        std::sort(pts.begin(), pts.end());
-        plot::Series front{"Pareto front", {}, {}};
-        double best = 1e300;
-        for (const auto& [x, y] : pts)
-            if (y < best) {
-                best = y;
-                front.x.push_back(x);
-                front.y.push_back(y);
-            }
-        if (front.x.size() > 1) f.series.insert(f.series.begin(), front);
-        for (const TRow& r : rows)
-            if (!r.golden) {
-                char lab[64];
-                std::snprintf(lab, sizeof lab, "%s %.2f%% (not on the machine)", r.name.c_str(),
-                              r.mean.nonocc);
-                f.hlines.push_back({r.mean.nonocc, lab});
-            }
-        f.note = "video rate: 40 ms";
-        f.width = 1000;
-        f.height = 650;
-        plot::write_plot(f, o.plot);  // with its gnuplot script and data beside it
-    }
-    if (!o.json.empty()) {
-        json arr = json::array();
-        for (const TRow& r : rows) {
-            json j = {{"variant", r.name}, {"what", r.what},      {"nonocc", r.mean.nonocc},
-                      {"all", r.mean.all}, {"disc", r.mean.disc}, {"cpu_ms", r.ms},
-                      {"delta", o.delta}};
-            json per = json::object();
-            for (size_t i = 0; i < scenes.size(); ++i)
-                per[scenes[i].name] = {{"nonocc", r.per_scene[i].nonocc},
-                                       {"all", r.per_scene[i].all},
-                                       {"disc", r.per_scene[i].disc}};
-            j["scenes"] = per;
-            if (r.golden) {
-                json prm = algo_params_json(r.p);
-                prm.erase("D");
-                j["params"] = prm;
-                j["fw_cycles_measured"] = r.model.fw_cycles;
-                j["a9_cycles_estimate"] = r.model.est.cycles;
-                j["a9_local_bytes_estimate"] = r.model.est.local_bytes;
-                j["modeled_ms"] = r.model.ok() ? json(r.model.total_ms()) : json(nullptr);
-                j["fw_energy_uj"] = r.model.ok() ? json(r.model.fw_uj) : json(nullptr);
-            }
-            if (!o.perturb.empty()) j["perturb"] = o.perturb;
-            arr.push_back(j);
-        }
-        v::write_text_atomic(o.json, arr.dump(2) + "\n");
-    }
+    if (!o.plot.empty())  // with its gnuplot script and data beside it
+        plot::write_plot(ev::tradeoff_plot(rows, o.delta, scenes.size()), o.plot);
+    if (!o.json.empty())
+        v::write_text_atomic(o.json,
+                             ev::tradeoff_json(rows, scenes, o.delta, o.perturb).dump(2) + "\n");
     return static_cast<int>(kExitOk);
 }
 
@@ -328,62 +153,24 @@ int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
     std::printf("  flags (mean %s %%; per-scene nonocc)\n", delta_txt);
     json arr = json::array();
     for (const ParamSet& ps : sets) {
-        v::BadScores mean;
-        json per = json::object();
+        const ev::Scores s = ev::score_all("golden", scenes, ps.p, ps.explicit_D, o.delta,
+                                           "--param-sets line " + std::to_string(ps.line) + ", ");
         std::string cols;
-        for (const auto& sc : scenes) {
-            g::Params q = ps.p;
-            if (!ps.explicit_D) q.D = sc.ndisp;
-            q.frame = g::Frame::Left;
-            double secs = 0;
-            cv::Mat disp;
-            try {
-                disp = v::run_matcher("golden", sc, q, &secs);
-            } catch (const g::ParamError& e) {
-                throw UserError("--param-sets line " + std::to_string(ps.line) + ", scene '" +
-                                sc.name + "': " + e.what());
-            }
-            const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
-            const double n = static_cast<double>(scenes.size());
-            mean.nonocc += b.nonocc / n;
-            mean.all += b.all / n;
-            mean.disc += b.disc / n;
-            per[sc.name] = {{"nonocc", b.nonocc}, {"all", b.all}, {"disc", b.disc}};
+        for (const v::BadScores& b : s.per_scene) {
             char c[32];
             std::snprintf(c, sizeof c, " %8.2f", b.nonocc);
             cols += c;
         }
-        std::printf("%5d %7.2f %7.2f %7.2f%s  %s\n", ps.line, mean.nonocc, mean.all, mean.disc,
-                    cols.c_str(), ps.text.c_str());
+        std::printf("%5d %7.2f %7.2f %7.2f%s  %s\n", ps.line, s.mean.nonocc, s.mean.all,
+                    s.mean.disc, cols.c_str(), ps.text.c_str());
         std::fflush(stdout);
-        json prm = algo_params_json(ps.p);
-        if (!ps.explicit_D) prm.erase("D");
-        arr.push_back({{"line", ps.line},
-                       {"flags", ps.text},
-                       {"params", prm},
-                       {"nonocc", mean.nonocc},
-                       {"all", mean.all},
-                       {"disc", mean.disc},
-                       {"delta", o.delta},
-                       {"scenes", per}});
+        arr.push_back(
+            ev::param_set_json(ps.line, ps.text, ps.p, ps.explicit_D, s, scenes, o.delta));
     }
     if (!o.perturb.empty())
         for (auto& j : arr) j["perturb"] = o.perturb;
     if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
     return static_cast<int>(kExitOk);
-}
-
-// The conditions of eval --robustness (docs/golden.md, "Robustness").
-const std::vector<std::pair<std::string, std::string>>& robustness_conditions() {
-    static const std::vector<std::pair<std::string, std::string>> c = {
-        {"as recorded", ""},
-        {"right x0.8 + 10", "gain=0.8,offset=10"},
-        {"right x1.2 - 20", "gain=1.2,offset=-20"},
-        {"noise 3", "noise=3"},
-        {"noise 6", "noise=6"},
-        {"right x0.9 + 5, noise 2", "gain=0.9,offset=5,noise=2"},
-    };
-    return c;
 }
 
 // imapsim eval --robustness: every matcher on every scene under each
@@ -399,47 +186,36 @@ int run_robustness(const EvalOptions& o, const std::vector<v::Scene>& scenes,
     for (const auto& l : labels) std::printf(" %14s", l.c_str());
     std::printf("  perturb\n");
     json arr = json::array();
-    for (const auto& [cond, spec] : robustness_conditions()) {
-        const v::Perturbation pert = spec.empty() ? v::Perturbation{} : v::parse_perturbation(spec);
-        std::vector<double> mean(matchers.size(), 0.0);
-        json per = json::object();
-        for (const v::Scene& orig : scenes) {
-            v::Scene sc = orig;
-            sc.left = orig.left.clone();
-            sc.right = orig.right.clone();
-            v::perturb_pair(sc.left, sc.right, pert);
-            g::Params q = p;
-            if (!explicit_D) q.D = sc.ndisp;
-            q.frame = g::Frame::Left;
-            for (size_t i = 0; i < matchers.size(); ++i) {
-                double secs = 0;
-                cv::Mat disp;
-                try {
-                    disp = v::run_matcher(matchers[i], sc, q, &secs);
-                } catch (const g::ParamError& e) {
-                    throw UserError("scene '" + sc.name + "': " + e.what());
-                }
-                const v::BadScores b = v::score_bad(disp, 1.0, sc, o.delta);
-                mean[i] += b.nonocc / static_cast<double>(scenes.size());
-                per[labels[i]][sc.name] = b.nonocc;
-            }
-        }
+    for (const auto& [cond, spec] : ev::robustness_conditions()) {
+        const ev::Condition c =
+            ev::score_condition(cond, spec, scenes, matchers, labels, p, explicit_D, o.delta);
         std::printf("%-24s", cond.c_str());
-        json means = json::object();
-        for (size_t i = 0; i < matchers.size(); ++i) {
-            std::printf(" %14.2f", mean[i]);
-            means[labels[i]] = mean[i];
-        }
+        for (const double m : c.mean) std::printf(" %14.2f", m);
         std::printf("  %s\n", spec.empty() ? "-" : spec.c_str());
         std::fflush(stdout);
-        arr.push_back({{"condition", cond},
-                       {"perturb", spec.empty() ? json(nullptr) : json(v::to_string(pert))},
-                       {"nonocc", means},
-                       {"scenes", per},
-                       {"delta", o.delta}});
+        arr.push_back(c.json);
     }
     if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
     return static_cast<int>(kExitOk);
+}
+
+// The mean row of each matcher over the scenes (eval --all).
+void print_means(const std::vector<Row>& rows, const std::vector<std::string>& matchers,
+                 const std::function<std::string(const std::string&)>& label, size_t nscenes,
+                 int wscene, int wfirst) {
+    for (const auto& name : matchers) {
+        v::BadScores mean;
+        double ms = 0;
+        for (const auto& r : rows)
+            if (r.matcher == label(name)) {
+                mean.nonocc += r.bad.nonocc / nscenes;
+                mean.all += r.bad.all / nscenes;
+                mean.disc += r.bad.disc / nscenes;
+                ms += r.ms / nscenes;
+            }
+        std::printf("%-*s  %-14s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
+                    label(name).c_str(), "", wfirst, mean.nonocc, mean.all, mean.disc, ms);
+    }
 }
 
 }  // namespace
@@ -611,41 +387,18 @@ Subcommand register_eval(CLI::App& app) {
 
             std::vector<Row> rows;
             for (const auto& sc : scenes) {
-                g::Params q = p;
-                if (!explicit_D) q.D = sc.ndisp;
-                q.frame = g::Frame::Left;
+                const g::Params q = ev::scene_params(p, explicit_D, sc);
                 for (const auto& name : matchers) {
-                    double secs = 0;
-                    cv::Mat disp;
-                    try {
-                        disp = v::run_matcher(name, sc, q, &secs);
-                    } catch (const g::ParamError& e) {
-                        throw UserError("scene '" + sc.name + "': " + e.what());
-                    }
-                    Row r{sc.name, label(name), v::score_bad(disp, 1.0, sc, o->delta), secs * 1e3,
-                          matcher_params(name, q)};
+                    const ev::Score s = ev::score_one(name, sc, q, o->delta);
+                    Row r{sc.name, label(name), s.bad, s.ms, ev::matcher_params(name, q)};
                     std::printf(fmt, wscene, r.scene.c_str(), r.matcher.c_str(), q.D, wfirst,
                                 r.bad.nonocc, r.bad.all, r.bad.disc, r.ms);
                     std::fflush(stdout);
                     rows.push_back(std::move(r));
                 }
             }
-            if (scenes.size() > 1) {
-                for (const auto& name : matchers) {
-                    v::BadScores mean;
-                    double ms = 0;
-                    for (const auto& r : rows)
-                        if (r.matcher == label(name)) {
-                            mean.nonocc += r.bad.nonocc / scenes.size();
-                            mean.all += r.bad.all / scenes.size();
-                            mean.disc += r.bad.disc / scenes.size();
-                            ms += r.ms / scenes.size();
-                        }
-                    std::printf("%-*s  %-14s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
-                                label(name).c_str(), "", wfirst, mean.nonocc, mean.all, mean.disc,
-                                ms);
-                }
-            }
+            if (scenes.size() > 1)
+                print_means(rows, matchers, label, scenes.size(), wscene, wfirst);
 
             if (!o->json.empty()) {
                 json arr = json::array();

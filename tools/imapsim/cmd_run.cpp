@@ -39,51 +39,6 @@ struct RunOptions {
     WaveFlags waves;
 };
 
-// Two output flags naming one file would overwrite each other.
-void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outs) {
-    namespace fs = std::filesystem;
-    for (size_t i = 0; i < outs.size(); ++i)
-        for (size_t k = i + 1; k < outs.size(); ++k) {
-            if (outs[i].second.empty() || outs[k].second.empty()) continue;
-            const fs::path a = fs::absolute(outs[i].second).lexically_normal();
-            const fs::path b = fs::absolute(outs[k].second).lexically_normal();
-            if (a == b)
-                throw UserError(outs[i].first + " and " + outs[k].first + " name the same file '" +
-                                outs[i].second + "'");
-        }
-}
-
-// The emitted firmware source: the planner's constants and per-column plan
-// macros, ending with the .include of dp.s, after a header that says how to
-// assemble it and how to exec the result.
-std::string defines_text(const ModelRun& run, const std::string& source,
-                         const isa::MachineConfig& cfg, const std::string& emit_program,
-                         const std::string& inc_path) {
-    std::string t;
-    t += "; Constants and plan of the DP firmware for one imapsim run (docs/firmware.md,\n";
-    t += "; \"Assembling the firmware by hand\"): " + source + "\n";
-    t += ";\n; Re-assemble (this file includes dp.s at its end):\n";
-    t += ";     imapsim asm " + std::filesystem::absolute(inc_path).lexically_normal().string() +
-         " -o FRAME.bin\n";
-    t += "; gives the program that ran.\n";
-    std::string params;
-    for (const auto& [i, val] : fw::param_block(run.plan))
-        params += " --param " + std::to_string(i) + "=" + std::to_string(val);
-    std::string machine;
-    const isa::MachineConfig def;
-    const auto now = cfg.list(), base = def.list();
-    for (size_t i = 0; i < now.size() && i < base.size(); ++i)
-        if (now[i].value != base[i].value) machine += " --set " + now[i].name + "=" + now[i].value;
-    t += "; Run it (the images of the run, whose ROI the constants X0, Y0 and the\n";
-    t += "; program's size name; the map comes out of video port 0):\n";
-    t += ";     imapsim exec " + (emit_program.empty() ? std::string("FRAME.bin") : emit_program) +
-         " --left LEFT --right RIGHT" + params + " --out-size " + std::to_string(run.plan.roi.w) +
-         "x" + std::to_string(run.plan.roi.h) + machine + " --out-left MAP.png\n";
-    t += "; Param block (param[0]: the number of batches):" + params + "\n";
-    t += fw::inline_firmware_includes(run.source);
-    return t;
-}
-
 }  // namespace
 
 Subcommand register_run(CLI::App& app) {
@@ -136,12 +91,12 @@ Subcommand register_run(CLI::App& app) {
             check_output_file("--emit-program", o->emit_program, false);
             check_output_file("--emit-defines", o->emit_defines, false);
             check_wave_outputs(o->waves, o->model);
-            check_distinct_outputs({{"--out", o->out},
-                                    {"--out-color", o->out_color},
-                                    {"--report", o->report},
-                                    {"--emit-program", o->emit_program},
-                                    {"--emit-defines", o->emit_defines},
-                                    {"--vcd", o->waves.vcd}});
+            imap::engine::check_distinct_outputs({{"--out", o->out},
+                                                  {"--out-color", o->out_color},
+                                                  {"--report", o->report},
+                                                  {"--emit-program", o->emit_program},
+                                                  {"--emit-defines", o->emit_defines},
+                                                  {"--vcd", o->waves.vcd}});
 
             const bool explicit_D = !o->algo.D.empty();
             double gt_scale = 0;
@@ -238,8 +193,7 @@ Subcommand register_run(CLI::App& app) {
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
                     .count();
 
-            set_rtl_flags(o->rtl);
-            ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves);
+            ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves, &o->rtl);
             if (!run.divergence.empty()) {
                 // The lockstep stopped at its first divergence: the report
                 // says where (written on divergence too), no map is written.
@@ -316,14 +270,14 @@ Subcommand register_run(CLI::App& app) {
                             o->emit_program.c_str());
             }
             if (!o->emit_defines.empty()) {
-                v::write_text_atomic(
-                    o->emit_defines,
-                    defines_text(run, source, cfg, o->emit_program, o->emit_defines));
+                v::write_text_atomic(o->emit_defines,
+                                     imap::engine::firmware_source_text(
+                                         run, source, cfg, o->emit_program, o->emit_defines));
                 std::printf("  firmware source (constants and plan) -> %s\n",
                             o->emit_defines.c_str());
             }
             if (!o->report.empty()) {
-                nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms);
+                nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg));
                 j["source"] = source;
                 if (!truth.is_null()) j["ground_truth"] = truth;
                 v::write_text_atomic(o->report, j.dump(2) + "\n");

@@ -19,9 +19,6 @@ int dispatch(std::vector<imapsim::Subcommand>& subs) {
         for (auto& s : subs)
             if (s.app->parsed()) return s.run();
         return subs.front().run();  // no subcommand: the main job
-    } catch (const UserError& e) {
-        std::cerr << "imapsim: error: " << e.what() << "\n";
-        return e.code();
     } catch (const imap::engine::Error& e) {
         std::cerr << "imapsim: error: " << e.what() << "\n";
         return e.code();

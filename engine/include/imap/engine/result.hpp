@@ -118,6 +118,11 @@ RunResult read_child(const std::string& model, bool started, int wait_status,
 bool read_report(const nlohmann::json& rep, RunResult& r);
 
 nlohmann::json to_json(const RunResult& r);
+// The machine bound of the frame over its cycles (0 without a bound or
+// cycles): RunResult::efficiency, the run report's "efficiency".
+double efficiency(uint64_t bound_cycles, uint64_t cycles);
+// The "bounds" object of a report / stored result: phase -> bound cycles.
+nlohmann::json bounds_json(const std::vector<std::pair<std::string, uint64_t>>& bounds);
 // The "energy" object of a report / stored result.
 nlohmann::json energy_json(const Energy& e);
 RunResult result_from_json(const nlohmann::json& j);  // throws std::exception on bad input
