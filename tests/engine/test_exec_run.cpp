@@ -8,6 +8,7 @@
 #include "engine_test_util.hpp"
 #include "imap/engine/error.hpp"
 #include "imap/engine/exec.hpp"
+#include "imap/engine/exec_request.hpp"
 #include "imap/isa/assembler.hpp"
 
 namespace e = imap::engine;
@@ -117,4 +118,57 @@ BOOST_AUTO_TEST_CASE(models_and_sources) {
     std::unique_ptr<isa::Machine> m = ex::load_machine(pes(8), isa::load_program(bin), bin);
     ex::Inputs in;
     BOOST_TEST(ex::run("core", m, prog, in).cp[1] == 6u);
+}
+
+namespace {
+
+// exec's checks before the run (exec_request.hpp), with imapsim's messages.
+
+std::string check_error(const ex::Request& r) {
+    try {
+        ex::check(r, [] {});
+    } catch (const e::Error& e) {
+        BOOST_TEST(e.code() == e::kExitInput);
+        return e.what();
+    }
+    return "";
+}
+
+ex::Request core() {
+    ex::Request r;
+    r.program = "p.s";
+    r.model = "core";
+    return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(check_refusals) {
+    ex::Request r = core();
+    r.dump_mem = "0:15";
+    BOOST_TEST(check_error(r) == "--dump-mem needs --dump-pes (whose memory to print)");
+    r = core();
+    r.out_size = "0x5";
+    BOOST_TEST(check_error(r) ==
+               "invalid value '0x5' for --out-size: expected WxH with W and H in 1..65536");
+    r = core();
+    r.out_left = "o.png";
+    BOOST_TEST(check_error(r) ==
+               "--out-left needs an input image (--left or --right) or --out-size: the output "
+               "image has the size of the inputs");
+}
+
+BOOST_AUTO_TEST_CASE(check_fills_the_inputs) {
+    ex::Request r = core();
+    r.out_size = "32x16";
+    r.dump_pes = "0,3";
+    r.dump_mem = "0:15";
+    r.params = {"1=5"};
+    const ex::Checked c = ex::check(r, [] {});
+    BOOST_TEST((c.in.out_w == 32 && c.in.out_h == 16));
+    BOOST_TEST((c.dump_pes == std::vector<int>{0, 3}));
+    BOOST_TEST(c.mem_range.first == 0u);
+    BOOST_TEST(c.mem_range.second == 15u);
+    BOOST_TEST(c.in.params.size() == 1u);
+    BOOST_TEST(c.in.name == "p.s");
 }

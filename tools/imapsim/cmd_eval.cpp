@@ -1,24 +1,17 @@
 // imapsim eval: Middlebury-style scoring (SPEC A.8) of the golden reference
 // and the OpenCV reference matchers on one scene or on every scene of a
-// folder. Its flags, their checks and the printed tables; the scoring is the
-// engine's (imap/engine/eval.hpp).
+// folder. Its flags and the printed tables; the checks of the flags and the
+// rows are eval_request.hpp's, the scoring eval.hpp's (imap/engine/).
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cli_common.hpp"
 #include "imap/engine/eval.hpp"
+#include "imap/engine/eval_request.hpp"
 #include "imap/engine/plot.hpp"
-#include "imap/golden/stereo.hpp"
 #include "imap/vision/image_io.hpp"
-#include "imap/vision/matchers.hpp"
 #include "imap/vision/perturb.hpp"
-#include "imap/vision/scene.hpp"
-#include "imap/vision/score.hpp"
 
 namespace imapsim {
 
@@ -29,20 +22,7 @@ namespace plot = imap::engine::plot;
 using nlohmann::json;
 
 namespace {
-struct EvalOptions {
-    std::string scene, all, matcher, json, plot, param_sets, perturb;
-    bool tradeoff = false, robustness = false;
-    double delta = 1.0;
-    double gt_scale = 0;
-    AlgoFlags algo;
-};
-
-struct Row {
-    std::string scene, matcher;
-    v::BadScores bad;
-    double ms = 0;
-    json params;
-};
+using EvalOptions = ev::Request;
 
 // imapsim eval --tradeoff: every golden variant and the OpenCV matchers on
 // every scene; one mean row each with the modeled time of the headline case.
@@ -90,61 +70,34 @@ int run_tradeoff(const EvalOptions& o, const std::vector<v::Scene>& scenes, int 
     return static_cast<int>(kExitOk);
 }
 
-// One parameter set of --param-sets: the text of its line and its parameters.
-struct ParamSet {
-    std::string text;
-    int line = 0;
-    g::Params p;
-    bool explicit_D = false;
-};
-
-// Reads --param-sets FILE: one set of algorithm flags per line ('#' starts a
-// comment line), each parsed like the command line's; errors name the line.
-std::vector<ParamSet> read_param_sets(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw UserError("--param-sets '" + path + "': cannot read the file");
-    std::vector<ParamSet> sets;
-    std::string text;
-    int line = 0;
-    while (std::getline(in, text)) {
-        ++line;
-        const size_t b = text.find_first_not_of(" \t\r");
-        if (b == std::string::npos || text[b] == '#') continue;
-        std::istringstream is(text);
-        std::vector<std::string> args;
-        for (std::string w; is >> w;) args.push_back(w);
-        std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
-        CLI::App parser("param set");
-        AlgoFlags f;
-        add_algo_flags(&parser, f);
-        const std::string where = "--param-sets " + path + ":" + std::to_string(line) + ": ";
-        try {
-            parser.parse(args);
-        } catch (const CLI::ParseError& e) {
-            throw UserError(where + e.what());
-        }
-        if (!f.roi.empty() || f.fill || (f.given.count("--frame") && f.frame != "left"))
-            throw UserError(where + "--roi, --fill and --frame are not accepted here");
-        ParamSet ps;
-        ps.text = text.substr(b);
-        ps.line = line;
-        g::Roi roi;
-        bool has_roi = false;
-        try {
-            ps.p = parse_algo_flags(f, &roi, &has_roi);
-        } catch (const UserError& e) {
-            throw UserError(where + e.what());
-        }
-        ps.explicit_D = !f.D.empty();
-        sets.push_back(ps);
+// One line of --param-sets parsed like the command line's algorithm flags.
+ev::ParamSet parse_param_set(std::vector<std::string> args, const std::string& where) {
+    std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+    CLI::App parser("param set");
+    AlgoFlags f;
+    add_algo_flags(&parser, f);
+    try {
+        parser.parse(args);
+    } catch (const CLI::ParseError& e) {
+        throw UserError(where + e.what());
     }
-    if (sets.empty()) throw UserError("--param-sets '" + path + "': no parameter sets in it");
-    return sets;
+    if (!f.roi.empty() || f.fill || (f.given.count("--frame") && f.frame != "left"))
+        throw UserError(where + "--roi, --fill and --frame are not accepted here");
+    ev::ParamSet ps;
+    g::Roi roi;
+    bool has_roi = false;
+    try {
+        ps.p = parse_algo_flags(f, &roi, &has_roi);
+    } catch (const UserError& e) {
+        throw UserError(where + e.what());
+    }
+    ps.explicit_D = !f.D.empty();
+    return ps;
 }
 
 // imapsim eval --param-sets: the golden with every set on every scene, one
 // line per set (mean and per-scene nonocc); the scenes are loaded once.
-int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
+int run_param_sets(const EvalOptions& o, const std::vector<ev::ParamSet>& sets,
                    const std::vector<v::Scene>& scenes) {
     char delta_txt[32];
     std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o.delta);
@@ -152,7 +105,7 @@ int run_param_sets(const EvalOptions& o, const std::vector<ParamSet>& sets,
     for (const auto& sc : scenes) std::printf(" %8.8s", sc.name.c_str());
     std::printf("  flags (mean %s %%; per-scene nonocc)\n", delta_txt);
     json arr = json::array();
-    for (const ParamSet& ps : sets) {
+    for (const ev::ParamSet& ps : sets) {
         const ev::Scores s = ev::score_all("golden", scenes, ps.p, ps.explicit_D, o.delta,
                                            "--param-sets line " + std::to_string(ps.line) + ", ");
         std::string cols;
@@ -197,25 +150,6 @@ int run_robustness(const EvalOptions& o, const std::vector<v::Scene>& scenes,
     }
     if (!o.json.empty()) v::write_text_atomic(o.json, arr.dump(2) + "\n");
     return static_cast<int>(kExitOk);
-}
-
-// The mean row of each matcher over the scenes (eval --all).
-void print_means(const std::vector<Row>& rows, const std::vector<std::string>& matchers,
-                 const std::function<std::string(const std::string&)>& label, size_t nscenes,
-                 int wscene, int wfirst) {
-    for (const auto& name : matchers) {
-        v::BadScores mean;
-        double ms = 0;
-        for (const auto& r : rows)
-            if (r.matcher == label(name)) {
-                mean.nonocc += r.bad.nonocc / nscenes;
-                mean.all += r.bad.all / nscenes;
-                mean.disc += r.bad.disc / nscenes;
-                ms += r.ms / nscenes;
-            }
-        std::printf("%-*s  %-14s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
-                    label(name).c_str(), "", wfirst, mean.nonocc, mean.all, mean.disc, ms);
-    }
 }
 
 }  // namespace
@@ -271,152 +205,52 @@ Subcommand register_eval(CLI::App& app) {
         "image in the left frame after the fill post-step, so --roi and --frame cyc/right are "
         "refused and --fill is implied.");
 
-    return {
-        sub, [o, sub]() {
-            if (o->scene.empty() == o->all.empty())
-                throw UserError("give exactly one of --scene DIR or --all DATA_DIR");
-            if (!std::isfinite(o->delta) || o->delta < 0)
-                throw UserError("invalid value for --delta: expected a number >= 0");
-            if (sub->count("--gt-scale") > 0 && !(std::isfinite(o->gt_scale) && o->gt_scale > 0))
-                throw UserError("invalid value for --gt-scale: expected a number > 0");
-            v::Perturbation pert;
-            if (sub->count("--perturb") > 0) {
-                try {
-                    pert = v::parse_perturbation(o->perturb);
-                } catch (const v::PerturbSpecError& e) {
-                    throw UserError("invalid value '" + e.item() + "' for --perturb: " + e.want());
+    return {sub, [o, sub]() {
+                o->gt_scale_given = sub->count("--gt-scale") > 0;
+                o->perturb_given = sub->count("--perturb") > 0;
+                const ev::Checked c = ev::validate(*o);
+                std::vector<ev::ParamSet> sets;
+                if (!o->param_sets.empty())
+                    sets = ev::read_param_sets(o->param_sets, parse_param_set);
+                ev::check_outputs(*o);  // fail before the work, not after it
+                std::vector<v::Scene> scenes = ev::load_scenes(*o, c);
+                if (o->perturb_given) {  // the same perturbed pair goes to every matcher
+                    for (auto& sc : scenes) v::perturb_pair(sc.left, sc.right, c.pert);
+                    o->perturb = v::to_string(c.pert);
+                    std::printf("perturbation: %s\n", o->perturb.c_str());
                 }
-            }
-            const bool perturbed = sub->count("--perturb") > 0;
-            if (o->robustness) {
-                if (perturbed)
-                    throw UserError(
-                        "--robustness runs its own list of perturbations: drop "
-                        "--perturb");
-                if (o->tradeoff || !o->param_sets.empty())
-                    throw UserError("give one of --robustness, --tradeoff or --param-sets");
-            }
-            g::Roi roi;
-            bool has_roi = false;
-            const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-            if (has_roi)
-                throw UserError(
-                    "--roi is not supported by eval: scenes are scored over the "
-                    "whole image");
-            if (sub->count("--frame") > 0 && p.frame != g::Frame::Left)
-                throw UserError("--frame " + o->algo.frame +
-                                " is not supported by eval: scoring uses the left frame");
-            const bool explicit_D = !o->algo.D.empty();
-            if (!o->plot.empty() && !o->tradeoff) throw UserError("--plot needs --tradeoff");
-            std::vector<ParamSet> sets;
-            if (!o->param_sets.empty()) {
-                if (o->tradeoff) throw UserError("give --tradeoff or --param-sets, not both");
-                if (!o->matcher.empty() && o->matcher != "golden")
-                    throw UserError("--param-sets scores the golden only: drop --matcher");
-                for (const std::string& f : o->algo.given)
-                    if (f != "--D")
-                        throw UserError(
-                            "--param-sets takes the algorithm flags from its file: drop " + f +
-                            " (only --D, the default of the sets without one, is accepted)");
-                if (o->algo.fill) throw UserError("--param-sets: drop --fill (it is implied)");
-                sets = read_param_sets(o->param_sets);
-            }
-            if (o->tradeoff) {
-                if (!o->matcher.empty())
-                    throw UserError("--tradeoff scores its own list of matchers: drop --matcher");
-                for (const std::string& f : o->algo.given)
-                    if (f != "--D")
-                        throw UserError("--tradeoff uses its own parameter sets: drop " + f +
-                                        " (only --D is accepted)");
-                if (o->algo.fill)
-                    throw UserError("--tradeoff uses its own parameter sets: drop --fill");
-            }
-
-            std::vector<std::string> matchers;
-            const std::string m =
-                !o->matcher.empty() ? o->matcher : (o->all.empty() ? "golden" : "all");
-            if (m == "all")
-                matchers = v::matcher_names();
-            else
-                matchers = {m};
-
-            check_output_file("--json", o->json, false);  // fail before the work, not after it
-            if (!o->plot.empty()) {
-                plot::check_plot_path("--plot", o->plot);
-                check_output_file("--plot", o->plot, false);
-            }
-
-            const std::vector<std::string> dirs =
-                o->all.empty() ? std::vector<std::string>{o->scene} : v::list_scene_dirs(o->all);
-            if (dirs.empty())
-                throw UserError("no scene folders (with a left image) under '" + o->all + "'");
-
-            // Load every scene first: a bad folder fails before minutes of matching.
-            std::vector<v::Scene> scenes;
-            for (const auto& d : dirs)
-                scenes.push_back(v::load_scene(d, o->gt_scale, explicit_D ? p.D : 0));
-            // The golden row names the preset it started from (golden:quality).
-            auto label = [&](const std::string& name) {
-                return name == "golden" && !o->algo.preset.empty() ? "golden:" + o->algo.preset
-                                                                   : name;
-            };
-            // The same perturbed pair goes to every matcher.
-            if (perturbed) {
-                for (auto& sc : scenes) v::perturb_pair(sc.left, sc.right, pert);
-                o->perturb = v::to_string(pert);
-                std::printf("perturbation: %s\n", o->perturb.c_str());
-            }
-
-            if (o->robustness) {
-                std::vector<std::string> labels;
-                for (const auto& name : matchers) labels.push_back(label(name));
-                return run_robustness(*o, scenes, matchers, labels, p, explicit_D);
-            }
-            if (o->tradeoff) return run_tradeoff(*o, scenes, explicit_D ? p.D : 0);
-            if (!sets.empty()) return run_param_sets(*o, sets, scenes);
-
-            int wscene = 5;
-            for (const auto& sc : scenes)
-                wscene = std::max(wscene, static_cast<int>(sc.name.size()));
-            char delta_txt[32];
-            std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o->delta);
-            std::printf("%-*s  %-14s %6s %7s %7s %7s %10s\n", wscene, "scene", "matcher", "D",
-                        (std::string(delta_txt) + " nonocc").c_str(), "all", "disc", "time ms");
-            const char* fmt = "%-*s  %-14s %6d %*.2f %7.2f %7.2f %10.1f\n";
-            const int wfirst = static_cast<int>(std::string(delta_txt).size()) + 7;
-
-            std::vector<Row> rows;
-            for (const auto& sc : scenes) {
-                const g::Params q = ev::scene_params(p, explicit_D, sc);
-                for (const auto& name : matchers) {
-                    const ev::Score s = ev::score_one(name, sc, q, o->delta);
-                    Row r{sc.name, label(name), s.bad, s.ms, ev::matcher_params(name, q)};
-                    std::printf(fmt, wscene, r.scene.c_str(), r.matcher.c_str(), q.D, wfirst,
-                                r.bad.nonocc, r.bad.all, r.bad.disc, r.ms);
-                    std::fflush(stdout);
-                    rows.push_back(std::move(r));
+                if (o->robustness) {
+                    std::vector<std::string> labels;
+                    for (const auto& name : c.matchers) labels.push_back(ev::label(*o, name));
+                    return run_robustness(*o, scenes, c.matchers, labels, c.p, c.explicit_D);
                 }
-            }
-            if (scenes.size() > 1)
-                print_means(rows, matchers, label, scenes.size(), wscene, wfirst);
+                if (o->tradeoff) return run_tradeoff(*o, scenes, c.explicit_D ? c.p.D : 0);
+                if (!sets.empty()) return run_param_sets(*o, sets, scenes);
 
-            if (!o->json.empty()) {
-                json arr = json::array();
-                for (const auto& r : rows)
-                    arr.push_back({{"scene", r.scene},
-                                   {"matcher", r.matcher},
-                                   {"nonocc", r.bad.nonocc},
-                                   {"all", r.bad.all},
-                                   {"disc", r.bad.disc},
-                                   {"ms", r.ms},
-                                   {"delta", o->delta},
-                                   {"params", r.params}});
-                if (perturbed)
-                    for (auto& j : arr) j["perturb"] = o->perturb;
-                v::write_text_atomic(o->json, arr.dump(2) + "\n");
-            }
-            return static_cast<int>(kExitOk);
-        }};
+                int wscene = 5;
+                for (const auto& sc : scenes)
+                    wscene = std::max(wscene, static_cast<int>(sc.name.size()));
+                char delta_txt[32];
+                std::snprintf(delta_txt, sizeof delta_txt, "bad>%g", o->delta);
+                std::printf("%-*s  %-14s %6s %7s %7s %7s %10s\n", wscene, "scene", "matcher", "D",
+                            (std::string(delta_txt) + " nonocc").c_str(), "all", "disc", "time ms");
+                const int wfirst = static_cast<int>(std::string(delta_txt).size()) + 7;
+                const std::vector<ev::Row> rows =
+                    ev::score_table(*o, c, scenes, [&](const ev::Row& r) {
+                        std::printf("%-*s  %-14s %6d %*.2f %7.2f %7.2f %10.1f\n", wscene,
+                                    r.scene.c_str(), r.matcher.c_str(), r.D, wfirst, r.bad.nonocc,
+                                    r.bad.all, r.bad.disc, r.ms);
+                        std::fflush(stdout);
+                    });
+                if (scenes.size() > 1)
+                    for (const ev::Row& m : ev::mean_rows(*o, rows, c.matchers, scenes.size()))
+                        std::printf("%-*s  %-14s %6s %*.2f %7.2f %7.2f %10.1f\n", wscene, "mean",
+                                    m.matcher.c_str(), "", wfirst, m.bad.nonocc, m.bad.all,
+                                    m.bad.disc, m.ms);
+                if (!o->json.empty())
+                    v::write_text_atomic(o->json, ev::table_json(*o, rows).dump(2) + "\n");
+                return static_cast<int>(kExitOk);
+            }};
 }
 
 }  // namespace imapsim

@@ -1,7 +1,8 @@
 // imapsim exec: runs a user's program (IMAPFW01 file, or assembler source
 // ending in .s / .asm) on a model of the machine, with optional video inputs
 // and an output image on port 0 (docs/exec.md). Its flags, their parse and
-// the printed lines; the run is the engine's (imap/engine/exec.hpp).
+// the printed lines; the checks (exec_request.hpp) and the run (exec.hpp)
+// are the engine's.
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -10,7 +11,7 @@
 #include "asm_flags.hpp"
 #include "cli_common.hpp"
 #include "imap/engine/exec.hpp"
-#include "imap/firmware/run.hpp"
+#include "imap/engine/exec_request.hpp"
 #include "imap/isa/assembler.hpp"
 #include "imap/isa/machine.hpp"
 #include "imap/isa/program.hpp"
@@ -21,18 +22,12 @@ namespace imapsim {
 
 namespace isa = imap::isa;
 namespace v = imap::vision;
-namespace fw = imap::firmware;
 namespace ex = imap::engine::exec;
 
 namespace {
 
-struct ExecOptions {
-    std::string program, left, right, out_left, out_size, report;
-    std::string dump_pes, dump_mem;
-    std::string model = kDefaultModel;
-    std::vector<std::string> params, defines;
-    MachineFlags machine;
-    WaveFlags waves;
+struct ExecOptions : ex::Request {
+    ExecOptions() { model = kDefaultModel; }
 };
 
 // The PE state of ex::pe_state: registers and flags, then (with `mem`) the
@@ -79,12 +74,6 @@ isa::Program read_program(const ExecOptions& o) {
         }
     }
     return assemble_or_report(o.program, asm_options(o.defines), "nothing run");
-}
-
-isa::ImageVideoPort::Image read_input(const std::string& path, const char* what) {
-    if (path.empty()) return {};
-    const cv::Mat m = v::load_grey8(path, what);
-    return fw::to_video_image(v::view_of(m));
 }
 
 void print_header(const ExecOptions& o, const isa::Program& prog, const isa::MachineConfig& cfg,
@@ -164,45 +153,12 @@ Subcommand register_exec(CLI::App& app) {
 
     return {sub, [o]() {
                 // Everything is checked before the run: a bad flag never costs a run.
-                // Everything is checked before the run: a bad flag never costs a run.
-                const isa::MachineConfig cfg = parse_machine_flags(o->machine);
-                ex::check_model(o->model);
-                ex::Inputs in;
-                in.name = o->program;
-                in.params = ex::parse_params(o->params);
-                const std::vector<int> dump_pes = o->dump_pes.empty()
-                                                      ? std::vector<int>{}
-                                                      : ex::parse_pe_list(o->dump_pes, cfg.pes);
-                if (!o->dump_mem.empty() && dump_pes.empty())
-                    throw UserError("--dump-mem needs --dump-pes (whose memory to print)");
-                const auto mem_range = o->dump_mem.empty()
-                                           ? std::pair<uint32_t, uint32_t>{0, 0}
-                                           : ex::parse_mem_range(o->dump_mem, cfg.mem_bytes);
-                check_output_file("--out-left", o->out_left, true);
-                check_output_file("--report", o->report, false);
-                check_wave_outputs(o->waves, o->model);
-                in.left = read_input(o->left, "left image");
-                in.right = read_input(o->right, "right image");
-                if (!o->left.empty() && !o->right.empty())
-                    check_same_size(o->left, in.left.width, in.left.height, o->right,
-                                    in.right.width, in.right.height);
-                const isa::ImageVideoPort::Image& shape = o->left.empty() ? in.right : in.left;
-                in.out_w = shape.width;
-                in.out_h = shape.height;
-                if (!o->out_size.empty()) {
-                    int w = 0, h = 0;
-                    char x = 0;
-                    if (std::sscanf(o->out_size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' ||
-                        w < 1 || h < 1 || w > 65536 || h > 65536)
-                        throw UserError("invalid value '" + o->out_size +
-                                        "' for --out-size: expected WxH with W and H in 1..65536");
-                    in.out_w = w;
-                    in.out_h = h;
-                }
-                if (!o->out_left.empty() && in.out_w == 0)
-                    throw UserError(
-                        "--out-left needs an input image (--left or --right) or --out-size: the "
-                        "output image has the size of the inputs");
+                const ex::Checked c =
+                    ex::check(*o, [&] { check_wave_outputs(o->waves, o->model); });
+                const isa::MachineConfig& cfg = c.cfg;
+                const ex::Inputs& in = c.in;
+                const std::vector<int>& dump_pes = c.dump_pes;
+                const auto mem_range = c.mem_range;
                 const isa::Program prog = read_program(*o);
                 // Decoding checks every word against this machine before the run;
                 // the core model runs this machine, the TLM model builds its own.

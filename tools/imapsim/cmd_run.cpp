@@ -1,12 +1,13 @@
 // imapsim run: the main job. Runs the DP firmware on a model of the array
 // (default: the built-in synthetic scene), compares the disparity map with
-// the golden bit for bit and reports cycles, modeled time and phases.
+// the golden bit for bit and reports cycles, modeled time and phases. The
+// input and the ground-truth score are imap/engine/run_request.hpp's.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "imap/engine/run_request.hpp"
 #include "imap/firmware/plan.hpp"
 #include "imap/firmware/run.hpp"
 #include "imap/golden/stereo.hpp"
@@ -14,9 +15,6 @@
 #include "imap/isa/program.hpp"
 #include "imap/vision/colour.hpp"
 #include "imap/vision/image_io.hpp"
-#include "imap/vision/scene.hpp"
-#include "imap/vision/score.hpp"
-#include "imap/vision/synth.hpp"
 #include "model_runner.hpp"
 
 namespace imapsim {
@@ -25,6 +23,7 @@ namespace g = imap::golden;
 namespace v = imap::vision;
 namespace fw = imap::firmware;
 namespace isa = imap::isa;
+namespace run = imap::engine::run;
 
 namespace {
 struct RunOptions {
@@ -77,214 +76,104 @@ Subcommand register_run(CLI::App& app) {
     add_rtl_flags(sub, o->rtl);
     add_wave_flags(sub, o->waves);
 
-    return {
-        sub, [o]() {
-            g::Roi roi;
-            bool has_roi = false;
-            g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-            const isa::MachineConfig cfg = parse_machine_flags(o->machine);
-            check_model_name(o->model);
-            // Every output path, before any work (docs/errors.md).
-            check_output_file("--out", o->out, true);
-            check_output_file("--out-color", o->out_color, true);
-            check_output_file("--report", o->report, false);
-            check_output_file("--emit-program", o->emit_program, false);
-            check_output_file("--emit-defines", o->emit_defines, false);
-            check_wave_outputs(o->waves, o->model);
-            imap::engine::check_distinct_outputs({{"--out", o->out},
-                                                  {"--out-color", o->out_color},
-                                                  {"--report", o->report},
-                                                  {"--emit-program", o->emit_program},
-                                                  {"--emit-defines", o->emit_defines},
-                                                  {"--vcd", o->waves.vcd}});
+    return {sub, [o]() {
+                g::Roi roi;
+                bool has_roi = false;
+                g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
+                const isa::MachineConfig cfg = parse_machine_flags(o->machine);
+                check_model_name(o->model);
+                // Every output path, before any work (docs/errors.md).
+                check_output_file("--out", o->out, true);
+                check_output_file("--out-color", o->out_color, true);
+                check_output_file("--report", o->report, false);
+                check_output_file("--emit-program", o->emit_program, false);
+                check_output_file("--emit-defines", o->emit_defines, false);
+                check_wave_outputs(o->waves, o->model);
+                imap::engine::check_distinct_outputs({{"--out", o->out},
+                                                      {"--out-color", o->out_color},
+                                                      {"--report", o->report},
+                                                      {"--emit-program", o->emit_program},
+                                                      {"--emit-defines", o->emit_defines},
+                                                      {"--vcd", o->waves.vcd}});
 
-            const bool explicit_D = !o->algo.D.empty();
-            double gt_scale = 0;
-            if (!o->gt_scale.empty()) {
-                if (o->scene.empty() && o->gt.empty())
-                    throw UserError("--gt-scale needs --scene or --gt");
-                gt_scale = parse_real_flag("--gt-scale", o->gt_scale, 0, 1e6, true);
-            }
-            cv::Mat L, R, gt;
-            v::Scene scene;  // ground truth and masks, when scored against
-            bool scored = false;
-            std::string source;
-            if (o->left.empty() != o->right.empty())
-                throw UserError("--left and --right must be given together");
-            if (!o->scene.empty() && !o->left.empty())
-                throw UserError("give either --scene DIR or --left/--right, not both");
-            if (!o->gt.empty() && o->left.empty())
-                throw UserError("--gt needs --left and --right (--scene has its own)");
-            if (!o->scene.empty()) {
-                scene = v::load_scene(o->scene, gt_scale, explicit_D ? p.D : 0);
-                if (!explicit_D) p.D = scene.ndisp;
-                L = scene.left;
-                R = scene.right;
-                scored = true;
-                source = "scene " + scene.name;
-            } else if (!o->left.empty()) {
-                L = v::load_grey8(o->left, "left image");
-                R = v::load_grey8(o->right, "right image");
-                source = o->left + " + " + o->right;
-                if (!o->gt.empty()) {
-                    scene.name = o->gt;
-                    scene.gt = v::load_grey8(o->gt, "ground truth");
-                    if (scene.gt.size() != L.size())
-                        throw UserError("ground truth '" + o->gt + "' is " +
-                                        std::to_string(scene.gt.cols) + "x" +
-                                        std::to_string(scene.gt.rows) + " but the left image is " +
-                                        std::to_string(L.cols) + "x" + std::to_string(L.rows));
-                    scene.gt_scale = gt_scale > 0 ? gt_scale : 1.0;
-                    scene.default_masks = true;
-                    scene.nonocc = cv::Mat(L.size(), CV_8UC1, cv::Scalar(255));
-                    scene.all = scene.nonocc.clone();
-                    scene.disc = scene.nonocc.clone();
-                    scored = true;
-                } else if (!explicit_D) {
-                    // The images of a scene folder: say that its D differs.
-                    try {
-                        const v::Scene sc = v::load_scene(folder_of(o->left));
-                        if (sc.ndisp != p.D)
-                            std::fprintf(stderr,
-                                         "note: %s lies in scene folder '%s', whose "
-                                         "scenes.json gives "
-                                         "ndisp %d; this run uses --D %d (the default): "
-                                         "--scene %s takes the scene's D and scores it\n",
-                                         o->left.c_str(), sc.name.c_str(), sc.ndisp, p.D,
-                                         folder_of(o->left).c_str());
-                    } catch (const std::exception&) {
+                const run::Input in = run::load_input(
+                    {o->left, o->right, o->scene, o->gt, o->gt_scale, o->seed, o->size,
+                     !o->algo.D.empty()},
+                    &p, &roi, has_roi, [](const std::string& n) { std::fputs(n.c_str(), stderr); });
+                const std::string& source = in.source;
+                const cv::Mat &L = in.L, &R = in.R;
+                const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
+
+                std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
+                            source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
+                            p.vote ? "on" : "off", g::to_string(p.frame));
+                std::printf(
+                    "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
+                    "model %s\n",
+                    cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
+                std::fflush(stdout);
+
+                const auto tg = std::chrono::steady_clock::now();
+                const g::DisparityMap want = g::compute(p, lv, rv, roi);
+                const double golden_ms =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
+                        .count();
+
+                ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves, &o->rtl);
+                if (!run.divergence.empty()) {
+                    // The lockstep stopped at its first divergence: the report
+                    // says where (written on divergence too), no map is written.
+                    if (!o->report.empty()) {
+                        nlohmann::json j = divergence_report(run, p, roi, cfg);
+                        j["source"] = source;
+                        v::write_text_atomic(o->report, j.dump(2) + "\n");
+                        std::printf("  report -> %s\n", o->report.c_str());
                     }
+                    std::fflush(stdout);
+                    std::fprintf(stderr, "imapsim: error: %s\n", run.divergence.c_str());
+                    return static_cast<int>(kExitMismatch);
                 }
-            } else {
-                int w = 0, h = 0;
-                char x = 0;
-                if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 2 ||
-                    h < 1 || w > 4096 || h > 4096)
-                    throw UserError("invalid value '" + o->size +
-                                    "' for --size: expected WxH with W in 2..4096, H in "
-                                    "1..4096");
-                v::SynthScene sc = v::make_synth_scene(o->seed, w, h);
-                L = sc.left;
-                R = sc.right;
-                gt = sc.gt;
-                source = "synthetic scene seed " + std::to_string(o->seed) + " " + o->size;
-                if (!has_roi && w >= 128 && h >= 128) {
-                    roi = {(w - 128) / 2, (h - 128) / 2, 128, 128};  // the headline ROI
-                    has_roi = true;
+                const fw::FrameResult& r = run.result;
+                const Comparison cmp = compare_maps(r.map, want);
+                print_run_summary(run, cmp, cfg, golden_ms);
+                const run::Truth truth = run::score_truth(in, p, roi);
+                for (const std::string& l : truth.lines) std::printf("%s\n", l.c_str());
+                const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
+                                  const_cast<uint8_t*>(r.map.data.data()));
+                if (!o->out.empty()) {
+                    v::write_image_atomic(o->out, out);
+                    std::printf("  disparity map -> %s\n", o->out.c_str());
                 }
-            }
-            check_same_size(o->left, L.cols, L.rows, o->right, R.cols, R.rows);
-            if (!has_roi) roi = {0, 0, L.cols, L.rows};
-            validate_frame(p, roi, L.cols, L.rows);
-            const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
-
-            std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
-                        source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
-                        p.vote ? "on" : "off", g::to_string(p.frame));
-            std::printf(
-                "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
-                "model %s\n",
-                cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
-            std::fflush(stdout);
-
-            const auto tg = std::chrono::steady_clock::now();
-            const g::DisparityMap want = g::compute(p, lv, rv, roi);
-            const double golden_ms =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
-                    .count();
-
-            ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves, &o->rtl);
-            if (!run.divergence.empty()) {
-                // The lockstep stopped at its first divergence: the report
-                // says where (written on divergence too), no map is written.
+                if (!o->out_color.empty()) {
+                    v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
+                    std::printf("  colour-mapped map -> %s (occluded: white)\n",
+                                o->out_color.c_str());
+                }
+                if (!o->emit_program.empty()) {
+                    try {
+                        isa::save_program(run.program, o->emit_program);
+                    } catch (const std::exception& e) {
+                        throw UserError("--emit-program '" + o->emit_program + "': " + e.what());
+                    }
+                    std::printf("  program (%zu instructions) -> %s\n", run.program.code.size(),
+                                o->emit_program.c_str());
+                }
+                if (!o->emit_defines.empty()) {
+                    v::write_text_atomic(o->emit_defines,
+                                         imap::engine::firmware_source_text(
+                                             run, source, cfg, o->emit_program, o->emit_defines));
+                    std::printf("  firmware source (constants and plan) -> %s\n",
+                                o->emit_defines.c_str());
+                }
                 if (!o->report.empty()) {
-                    nlohmann::json j = divergence_report(run, p, roi, cfg);
+                    nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg));
                     j["source"] = source;
+                    if (!truth.json.is_null()) j["ground_truth"] = truth.json;
                     v::write_text_atomic(o->report, j.dump(2) + "\n");
                     std::printf("  report -> %s\n", o->report.c_str());
                 }
-                std::fflush(stdout);
-                std::fprintf(stderr, "imapsim: error: %s\n", run.divergence.c_str());
-                return static_cast<int>(kExitMismatch);
-            }
-            const fw::FrameResult& r = run.result;
-            const Comparison cmp = compare_maps(r.map, want);
-            print_run_summary(run, cmp, cfg, golden_ms);
-            g::Params pl = p;
-            pl.frame = g::Frame::Left;
-            nlohmann::json truth;
-            if (!gt.empty()) {
-                const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
-                const double bad = v::bad_percent_roi(ml, gt, roi);
-                std::printf("  golden bad-1 vs ground truth (left frame, filled): %.2f%%\n", bad);
-                truth = {{"bad1_all", bad}};
-            } else if (scored) {
-                // As eval scores it: the golden's left-frame map after the fill.
-                const g::DisparityMap ml = g::compute(pl, lv, rv, roi, true);
-                const v::BadScores b = v::score_bad_roi(ml, scene, roi, 1.0);
-                if (scene.default_masks)
-                    std::printf(
-                        "  golden bad-1 vs ground truth (left frame, filled, every pixel of "
-                        "the ROI): %.2f%%\n",
-                        b.all);
-                else
-                    std::printf(
-                        "  golden bad-1 vs ground truth (left frame, filled%s): nonocc "
-                        "%.2f%%, all %.2f%%, disc %.2f%%\n",
-                        roi.w == L.cols && roi.h == L.rows ? "" : ", inside the ROI", b.nonocc,
-                        b.all, b.disc);
-                truth = {{"bad1_nonocc", b.nonocc},
-                         {"bad1_all", b.all},
-                         {"bad1_disc", b.disc},
-                         {"gt_scale", scene.gt_scale},
-                         {"masks", !scene.default_masks}};
-            }
-            if (!truth.is_null()) {
-                // The score is the golden's left-frame map after the fill (as
-                // eval scores it), not the map this run checked and writes.
-                truth["scored_map"] = {{"source", "golden"}, {"frame", "left"}, {"fill", true}};
-                truth["output_map"] = {{"frame", g::to_string(p.frame)}, {"fill", false}};
-                if (p.frame != g::Frame::Left)
-                    std::printf(
-                        "  (scored: the golden's left-frame map after the fill; the model's map "
-                        "and --out are the %s frame, unfilled)\n",
-                        g::to_string(p.frame));
-            }
-            const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
-                              const_cast<uint8_t*>(r.map.data.data()));
-            if (!o->out.empty()) {
-                v::write_image_atomic(o->out, out);
-                std::printf("  disparity map -> %s\n", o->out.c_str());
-            }
-            if (!o->out_color.empty()) {
-                v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
-                std::printf("  colour-mapped map -> %s (occluded: white)\n", o->out_color.c_str());
-            }
-            if (!o->emit_program.empty()) {
-                try {
-                    isa::save_program(run.program, o->emit_program);
-                } catch (const std::exception& e) {
-                    throw UserError("--emit-program '" + o->emit_program + "': " + e.what());
-                }
-                std::printf("  program (%zu instructions) -> %s\n", run.program.code.size(),
-                            o->emit_program.c_str());
-            }
-            if (!o->emit_defines.empty()) {
-                v::write_text_atomic(o->emit_defines,
-                                     imap::engine::firmware_source_text(
-                                         run, source, cfg, o->emit_program, o->emit_defines));
-                std::printf("  firmware source (constants and plan) -> %s\n",
-                            o->emit_defines.c_str());
-            }
-            if (!o->report.empty()) {
-                nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg));
-                j["source"] = source;
-                if (!truth.is_null()) j["ground_truth"] = truth;
-                v::write_text_atomic(o->report, j.dump(2) + "\n");
-                std::printf("  report -> %s\n", o->report.c_str());
-            }
-            return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
-        }};
+                return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
+            }};
 }
 
 }  // namespace imapsim

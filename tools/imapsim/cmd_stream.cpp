@@ -3,24 +3,19 @@
 // sequence, optionally rectified with a calibration file, stream line by line
 // into the TLM model at camera timing; every disparity map is checked against
 // the golden. Per-frame log (JSON + CSV), disparity PNGs, a side-by-side video.
-// The engine (source, outputs, logs) is imap/engine/stream.hpp; this file
-// parses the flags, plans the firmware and prints.
-#include <unistd.h>
-
+// The engine (source, outputs, logs) is imap/engine/stream.hpp, the checks
+// of the flags and the planned firmware stream_request.hpp's; this file
+// gathers the flags and prints.
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "cli_common.hpp"
 #include "imap/engine/stream.hpp"
-#include "imap/firmware/plan.hpp"
+#include "imap/engine/stream_request.hpp"
 #include "imap/testbench/frame_source.hpp"
 #include "imap/testbench/stream.hpp"
-#include "imap/vision/calib.hpp"
 #include "imap/vision/image_io.hpp"
 #include "interrupt.hpp"
 #include "model_runner.hpp"
@@ -28,28 +23,11 @@
 
 namespace imapsim {
 
-namespace fs = std::filesystem;
 namespace g = imap::golden;
-namespace v = imap::vision;
-namespace fw = imap::firmware;
 namespace tb = imap::testbench;
 namespace es = imap::engine::stream;
-using nlohmann::json;
 
-namespace {
-
-struct StreamOptions {
-    std::string frames_dir, left_video, right_video, synthetic, calib;
-    std::string fps = "25", deadline_ms, line_us;
-    std::string out_dir, video, json_log, csv_log, max_frames;
-    std::string seed = "1", size = "128x128";
-    std::string quantum_ns;
-    bool out_color = false, fail_on_deadline = false;
-    AlgoFlags algo;
-    MachineFlags machine;
-};
-
-}  // namespace
+using StreamOptions = es::Request;
 
 Subcommand register_stream(CLI::App& app) {
     auto o = std::make_shared<StreamOptions>();
@@ -109,116 +87,16 @@ Subcommand register_stream(CLI::App& app) {
 
     return {
         sub, [o]() {
-            // ---- flags -------------------------------------------------
-            const int nsrc = !o->frames_dir.empty() + !o->synthetic.empty() +
-                             (!o->left_video.empty() || !o->right_video.empty());
-            if (nsrc != 1)
-                throw UserError(
-                    "give exactly one source: --frames DIR, --left-video L --right-video R, "
-                    "or --synthetic N");
-            if (o->left_video.empty() != o->right_video.empty())
-                throw UserError("--left-video and --right-video must be given together");
-            g::Roi roi;
-            bool has_roi = false;
-            const g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-            imap::isa::MachineConfig cfg = parse_machine_flags(o->machine);
-            // The stream's testbench is the camera: a timed camera sets its
-            // line period, and the machine's vin does not wait again.
-            const imap::isa::BoardTiming camera = cfg.board;
-            cfg.board.camera_pixel_mhz = 0;
-            if (camera.camera_timed() && !o->line_us.empty())
-                throw UserError(
-                    "--line-us and a timed camera (--camera, camera_pixel_mhz) both "
-                    "set the line period: give one");
-            tb::StreamTiming timing;
-            timing.fps = parse_real_flag("--fps", o->fps, 0, 100000, true);
-            if (!o->deadline_ms.empty())
-                timing.deadline_ms = parse_real_flag("--deadline-ms", o->deadline_ms, 0, 1e9, true);
-            if (!o->line_us.empty())
-                timing.line_us = parse_real_flag("--line-us", o->line_us, 0, 1e9, true);
-            imap::tlm::TlmConfig tcfg;
-            if (!o->quantum_ns.empty())
-                tcfg.quantum_ns = parse_real_flag("--quantum-ns", o->quantum_ns, 0, 1e9, true);
-            const int max_frames = o->max_frames.empty()
-                                       ? 0
-                                       : static_cast<int>(parse_int_flag(
-                                             "--max-frames", o->max_frames, 1, 1000000000));
-            // The side-by-side video is Motion-JPEG in an AVI container; any
-            // other name would get a file of the wrong type (OpenCV picks the
-            // container from the name, e.g. one JPEG frame for ".png").
-            if (!o->video.empty()) {
-                if (lower_extension(o->video) != ".avi")
-                    throw UserError("--video '" + o->video +
-                                    "': the side-by-side video is Motion-JPEG in AVI: use a "
-                                    "name ending in .avi");
-            }
-            if (o->out_color && o->out_dir.empty())
-                throw UserError("--out-color needs --out-dir (the maps are written there)");
-            // Every output path can be written, before any work (the logs
-            // are first written a second into the stream).
-            check_output_dir("--out-dir", o->out_dir);
-            // A file inside --out-dir: its folder is created with it, and
-            // checked above.
-            auto check_file = [&](const char* flag, const std::string& path) {
-                if (file_in_folder(path, o->out_dir)) return;
-                check_output_file(flag, path, false);
-            };
-            check_file("--json", o->json_log);
-            check_file("--csv", o->csv_log);
-            check_file("--video", o->video);
-            std::string json_path = o->json_log, csv_path = o->csv_log;
-            if (!o->out_dir.empty()) {
-                if (json_path.empty()) json_path = (fs::path(o->out_dir) / "stream.json").string();
-                if (csv_path.empty()) csv_path = (fs::path(o->out_dir) / "stream.csv").string();
-            }
-
-            // ---- source ------------------------------------------------
-            es::SourceSpec spec;
-            spec.frames_dir = o->frames_dir;
-            spec.left_video = o->left_video;
-            spec.right_video = o->right_video;
-            spec.calib = o->calib;
-            spec.max_frames = max_frames;
-            if (o->frames_dir.empty() && o->left_video.empty()) {
-                spec.synthetic =
-                    static_cast<int>(parse_int_flag("--synthetic", o->synthetic, 1, 1000000));
-                parse_size_flag("--size", o->size, 16, 4096, &spec.width, &spec.height);
-                spec.seed = static_cast<uint64_t>(parse_int_flag("--seed", o->seed, 0, INT64_MAX));
-            }
-            es::OpenedSource opened = es::open_source(spec);
-            std::unique_ptr<tb::FrameSource>& source = opened.source;
-            const cv::Size size = opened.size;
-            const std::string& calib_note = opened.calib_note;
-            if (!has_roi) roi = {0, 0, size.width, size.height};
-            try {
-                g::validate(p, roi, size.width, size.height);
-                if (camera.camera_timed())
-                    timing.line_us =
-                        (size.width + camera.camera_hblank_px) / camera.camera_pixel_mhz;
-                timing.resolve(size.height);
-            } catch (const g::ParamError& e) {
-                throw UserError(e.what());
-            } catch (const std::invalid_argument& e) {
-                throw UserError(e.what());
-            }
-
-            // ---- firmware ----------------------------------------------
-            tb::StreamSetup setup;
-            setup.params = p;
-            setup.roi = roi;
-            setup.size = size;
-            try {
-                setup.plan = fw::plan_frame(p, roi, cfg);
-            } catch (const fw::FirmwareError& e) {
-                throw UserError(e.what());
-            }
-            setup.program = fw::assemble_frame(p, setup.plan);
-            setup.machine = cfg;
-            setup.tlm = tcfg;
-            setup.timing = timing;
-
+            es::Prepared pr = es::prepare(*o);
+            const std::unique_ptr<tb::FrameSource>& source = pr.opened.source;
+            const cv::Size size = pr.opened.size;
+            const g::Params& p = pr.setup.params;
+            const g::Roi& roi = pr.setup.roi;
+            const imap::isa::MachineConfig& cfg = pr.setup.machine;
+            const tb::StreamTiming& timing = pr.setup.timing;
+            const std::string &json_path = pr.outputs.json_path, &csv_path = pr.outputs.csv_path;
             std::printf("imapsim stream: %s\n", source->describe().c_str());
-            std::printf("  calibration: %s\n", calib_note.c_str());
+            std::printf("  calibration: %s\n", pr.opened.calib_note.c_str());
             std::printf("  frames %dx%d, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
                         size.width, size.height, roi.x0, roi.y0, roi.w, roi.h, p.D,
                         g::to_string(p.mode), p.vote ? "on" : "off", g::to_string(p.frame));
@@ -234,29 +112,13 @@ Subcommand register_stream(CLI::App& app) {
 
             // ---- outputs (nothing is created before this point) ---------
             if (!o->out_dir.empty()) create_output_dir("--out-dir", o->out_dir);
-            const json head = {{"source", source->describe()},
-                               {"calibration", o->calib},
-                               {"size", {size.width, size.height}},
-                               {"roi", {roi.x0, roi.y0, roi.w, roi.h}},
-                               {"params", algo_params_json(p)},
-                               {"machine",
-                                {{"pes", cfg.pes},
-                                 {"clock_mhz", cfg.clock_mhz},
-                                 {"mem_bytes", cfg.mem_bytes},
-                                 {"ext_bytes", cfg.ext_bytes}}},
-                               {"timing",
-                                {{"fps", timing.fps},
-                                 {"frame_ms", timing.frame_ms()},
-                                 {"line_us", timing.line_us},
-                                 {"deadline_ms", timing.deadline_ms}}},
-                               {"model", "tlm"}};
-            const es::Outputs outputs{o->out_dir, o->video, json_path, csv_path, o->out_color};
             Progress progress("frames", static_cast<size_t>(std::max(source->count(), 0)));
             es::Hooks hooks;
             hooks.stop_requested = [] { return interrupt::requested(); };
             hooks.frame = [&](const std::string& line) { progress.step(line); };
             interrupt::install();
-            const es::Outcome run = es::run(*source, setup, outputs, head, hooks);
+            const es::Outcome run =
+                es::run(*source, pr.setup, pr.outputs, es::log_head(*o, pr), hooks);
             progress.finish();
             const tb::StreamResult& res = run.result;
             const int video_frames = run.video_frames;
