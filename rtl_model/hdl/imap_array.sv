@@ -6,6 +6,7 @@
 // reduction of T over the active PEs for rany / rall, the ldx / stx address
 // check, the count of active PEs) and the row buses of the video line and
 // external-memory transfer units.
+`include "imap_ports.svh"
 module imap_array
 #(
     parameter int P = 8,
@@ -15,9 +16,7 @@ module imap_array
     parameter int XROWS = 8
 ) (
     input logic clk,
-`ifdef IMAP_MUTANTS
-    input logic [7:0] mutant,  // planted bug (mutation check)
-`endif
+    `IMAP_MUTANT_PORT
     input imap_pkg::cw_t cw,
     input imap_pkg::cwx_t cwx,
     input logic [31:0] cw_pre,

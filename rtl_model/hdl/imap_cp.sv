@@ -22,15 +22,12 @@
 // (phase, or xld / xst of 0 bytes with xfer_setup = 0) holds X for one clock
 // that is not a machine cycle; so do the two clocks that fill the pipeline
 // after reset (docs/rtl.md, "Clocks and machine cycles").
+`include "imap_ports.svh"
 module imap_cp
 #(
 `include "imap_params.svh"
 ) (
-    input logic clk,
-    input logic rst_n,
-`ifdef IMAP_MUTANTS
-    input logic [7:0] mutant,  // planted bug (mutation check)
-`endif
+    `IMAP_CLOCK_PORTS
     input imap_pkg::host_t host,  // program and param block (written while rst_n = 0)
     input imap_pkg::straps_t straps,  // the cost table and the machine configuration
     // control word to the array

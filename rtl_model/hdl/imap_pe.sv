@@ -20,6 +20,7 @@
 // Coding rule: every read of the register file and of the local memory
 // comes before any write in the process (the writes are blocking: nothing
 // outside this process reads them), so the bypass is explicit.
+`include "imap_ports.svh"
 module imap_pe
 #(
     parameter int NREGS = 16,
@@ -28,9 +29,7 @@ module imap_pe
     parameter int XROWS = 8
 ) (
     input logic clk,
-`ifdef IMAP_MUTANTS
-    input logic [7:0] mutant,  // planted bug (mutation check)
-`endif
+    `IMAP_MUTANT_PORT
     input imap_pkg::cw_t cw  /*verilator public_flat_rd*/,
     input imap_pkg::cwx_t cwx  /*verilator public_flat_rd*/,
     input logic [31:0] cw_pre  /*verilator public_flat_rd*/,  // preload base / row address

@@ -8,15 +8,12 @@
 // port of docs/isa.md). Every cost-table entry and the
 // run-time machine configuration are strap inputs; the sizes are
 // parameters (docs/rtl.md, "Configurations").
+`include "imap_ports.svh"
 module imap_top
 #(
 `include "imap_params.svh"
 ) (
-    input logic clk,
-    input logic rst_n,
-`ifdef IMAP_MUTANTS
-    input logic [7:0] mutant,  // planted bug (mutation check)
-`endif
+    `IMAP_CLOCK_PORTS
     input imap_pkg::host_t host,  // the host port (program and param block)
     input imap_pkg::straps_t straps,  // the cost table and the machine configuration
     output logic done,

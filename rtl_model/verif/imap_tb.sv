@@ -7,15 +7,12 @@
 // port per field of imap_pkg::host_t / straps_t, packed below). The
 // retire monitor (imap_cp_monitor.sv) is bound into the chip's CP below; the
 // design tree does not reference this folder.
+`include "imap_ports.svh"
 module imap_tb
 #(
 `include "imap_params.svh"
 ) (
-    input logic clk,
-    input logic rst_n,
-`ifdef IMAP_MUTANTS
-    input logic [7:0] mutant,  // planted bug (mutation check)
-`endif
+    `IMAP_CLOCK_PORTS
     input logic host_we,
     input logic host_sel,
     input logic [23:0] host_addr,
