@@ -7,7 +7,10 @@
 #include <set>
 #include <string>
 
+#include <iostream>
+
 #include "model.hpp"
+#include "rtl_cache_impl.hpp"
 
 namespace imap::rtl {
 
@@ -242,7 +245,7 @@ std::vector<std::string> built_configurations() {
 
 namespace {
 const detail::ConfigInfo* find(const isa::MachineConfig& cfg, int trace, bool mut) {
-    for (const detail::ConfigInfo& c : detail::built_configs())
+    for (const detail::ConfigInfo& c : detail::configs())
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
             c.trace == trace && (c.mutants != 0) == mut)
             return &c;
@@ -298,29 +301,6 @@ void check_runnable(const isa::MachineConfig& cfg, int waves, bool needs_mutants
     const std::string what = "pes=" + std::to_string(cfg.pes) +
                              " mem_bytes=" + std::to_string(cfg.mem_bytes) +
                              " ext_bytes=" + std::to_string(cfg.ext_bytes);
-    if (needs_mutants) {
-        bool any = false;
-        for (const ConfigInfo& c : built_configs()) any |= c.mutants != 0;
-        if (!any)
-            throw isa::ConfigError(
-                "RTL: this build has no mutation-check model (configure with "
-                "-DIMAP_RTL_MUTANTS=ON)");
-        if (!find(cfg, 0, true))
-            throw isa::ConfigError(
-                "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
-                "ext_bytes=65536 only (asked: " +
-                what + ")");
-    } else if (!has_configuration(cfg)) {
-        throw isa::ConfigError("RTL: no configuration " + what +
-                               " in this build (built: " + built_list(0) +
-                               "); PE count and memory sizes are HDL parameters: build it with: " +
-                               build_command(cfg, waves));
-    } else if (waves != 0 && !find(cfg, waves, false)) {
-        const char* fmt = waves == 2 ? "FST" : "VCD";
-        throw isa::ConfigError(std::string("RTL waves: no ") + fmt + "-traced configuration " +
-                               what + " in this build (" + fmt + ": " + built_list(waves) +
-                               "); build it with: " + build_command(cfg, waves));
-    }
     if (cfg.pe_regs > kHdlRegs)
         throw isa::ConfigError("RTL: pe_regs = " + std::to_string(cfg.pe_regs) +
                                " needs more registers than the design has per PE (" +
@@ -354,6 +334,43 @@ void check_runnable(const isa::MachineConfig& cfg, int waves, bool needs_mutants
                                " (imap_top parameter PHASES)");
     if (cfg.watchdog_cycles > (UINT64_MAX >> 2))
         throw isa::ConfigError("RTL: watchdog_cycles too large");
+    // (the limits first: nothing is built for a run that cannot run)
+    if (needs_mutants) {
+        bool any = false;
+        for (const ConfigInfo& c : built_configs()) any |= c.mutants != 0;
+        if (!any)
+            throw isa::ConfigError(
+                "RTL: this build has no mutation-check model (configure with "
+                "-DIMAP_RTL_MUTANTS=ON)");
+        if (!find(cfg, 0, true))
+            throw isa::ConfigError(
+                "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
+                "ext_bytes=65536 only (asked: " +
+                what + ")");
+    } else if (cache_enabled() &&
+               (!has_configuration(cfg) || (waves != 0 && !find(cfg, waves, false)))) {
+        // not built in: from the RTL cache (built on first use)
+        CacheConfig c;
+        c.pes = cfg.pes;
+        c.mem_bytes = cfg.mem_bytes;
+        c.ext_bytes = cfg.ext_bytes;
+        c.trace = waves == 1 ? 1 : 2;
+        cache_load(c, std::cerr);
+    } else if (!has_configuration(cfg)) {
+        throw isa::ConfigError("RTL: no configuration " + what +
+                               " in this build (built: " + built_list(0) +
+                               ") and building on demand is off (IMAP_RTL_CACHE=off); PE "
+                               "count and memory sizes are HDL parameters: give the RTL cache a "
+                               "folder (--rtl-cache DIR), or build it in with: " +
+                               build_command(cfg, waves));
+    } else if (waves != 0 && !find(cfg, waves, false)) {
+        const char* fmt = waves == 2 ? "FST" : "VCD";
+        throw isa::ConfigError(std::string("RTL waves: no ") + fmt + "-traced configuration " +
+                               what + " in this build (" + fmt + ": " + built_list(waves) +
+                               ") and building on demand is off (IMAP_RTL_CACHE=off); build it "
+                               "in with: " +
+                               build_command(cfg, waves));
+    }
 }
 
 }  // namespace imap::rtl

@@ -3,6 +3,7 @@
 // line port (the board model). One bench runs at a
 // time in a process; its calls go to it.
 #include "bench.hpp"
+#include "rtl_cache_impl.hpp"
 #include "svdpi.h"
 
 namespace imap::rtl::detail {
@@ -74,3 +75,12 @@ void imap_rtl_vid_put(int port, int y, int x, int val) {
 }
 
 }  // extern "C"
+
+namespace imap::rtl::detail {
+const DpiTable& host_dpi_table() {
+    static const DpiTable t{&imap_rtl_retire,    &imap_rtl_param_write, &imap_rtl_fault,
+                            &imap_rtl_assert,    &imap_rtl_vid_check,   &imap_rtl_vid_pixel,
+                            &imap_rtl_vid_ready, &imap_rtl_vid_put};
+    return t;
+}
+}  // namespace imap::rtl::detail

@@ -7,6 +7,7 @@
 
 #include "bench.hpp"
 #include "checker.hpp"
+#include "rtl_cache_impl.hpp"
 #include "support.hpp"
 #include "waves_view.hpp"
 
@@ -32,7 +33,7 @@ const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rc
     // without waves: the untraced variant, else a traced one (its tracing
     // stays off: IMAP_RTL_FST_ALL builds every configuration traced)
     const ConfigInfo *exact = nullptr, *traced = nullptr;
-    for (const ConfigInfo& c : built_configs())
+    for (const ConfigInfo& c : configs())
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
             (c.mutants != 0) == mut) {
             if (c.trace == trace)
@@ -48,7 +49,7 @@ const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rc
 }
 
 const ConfigInfo* traced_config(const isa::MachineConfig& cfg, int format) {
-    for (const ConfigInfo& c : built_configs())
+    for (const ConfigInfo& c : configs())
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
             c.trace == format && !c.mutants)
             return &c;

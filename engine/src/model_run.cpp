@@ -15,6 +15,7 @@
 #endif
 #ifdef IMAP_ENGINE_HAVE_RTL
 #include "imap/rtl/area.hpp"
+#include "imap/rtl/cache.hpp"
 #include "imap/rtl/lockstep.hpp"
 #include "imap/rtl/system.hpp"
 #endif
@@ -138,6 +139,7 @@ ModelRun run_on_model(const std::string& model, const g::Params& p, const g::Roi
         if (model == "rtl" || model == "lockstep") {
             namespace rtl = imap::rtl;
             rtl::LockstepConfig lc;
+            if (!rf.cache_dir.empty()) rtl::set_cache_dir(rf.cache_dir);
             try {
                 if (!rf.inject_fault.empty())
                     lc.rtl.inject = rtl::parse_fault_injection(rf.inject_fault);

@@ -1,5 +1,5 @@
 // The firmware sources compiled into the library (generated from
-// firmware/asm by embed_sources.cmake): file name, text.
+// firmware/asm by cmake/embed_files.cmake): file name, text.
 #pragma once
 
 #include <utility>

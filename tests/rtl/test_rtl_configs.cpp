@@ -2,15 +2,22 @@
 // sizes are HDL parameters, so a configuration that was not verilated is
 // refused with the exact command that builds it (never replaced by
 // another), and run-time parameters beyond the HDL's sizes are refused with
-// what is needed and what the design has.
+// what is needed and what the design has. With building on demand off
+// (IMAP_RTL_CACHE=off; the RTL cache itself is tested by cli.rtl_cache).
 #define BOOST_TEST_MODULE rtl_configs
 #include <boost/test/unit_test.hpp>
+#include <cstdlib>
 
 #include "rtl_test_util.hpp"
 
 using namespace rtltest;
 
 namespace {
+// the refusals below are those of a process without the RTL cache
+const bool kCacheOff = [] {
+    ::setenv("IMAP_RTL_CACHE", "off", 1);
+    return true;
+}();
 // waves: 0 none, 1 VCD, 2 FST (rtl::waves_format)
 std::string refusal(const isa::MachineConfig& cfg, int waves = 0) {
     try {
@@ -44,8 +51,10 @@ BOOST_AUTO_TEST_CASE(unbuilt_configuration_says_what_to_run) {
     BOOST_CHECK(!rtl::has_configuration(cfg));
     const std::string m = refusal(cfg);
     BOOST_TEST_MESSAGE(m);
+    BOOST_CHECK(kCacheOff);
     BOOST_CHECK(m.find("no configuration pes=77 mem_bytes=1024 ext_bytes=65536") !=
                 std::string::npos);
+    BOOST_CHECK(m.find("building on demand is off (IMAP_RTL_CACHE=off)") != std::string::npos);
     BOOST_CHECK(m.find("-DIMAP_RTL_EXTRA_CONFIGS=\"") != std::string::npos);
     BOOST_CHECK(m.find("77:1024:65536\"") != std::string::npos);
     BOOST_CHECK(m.find("cmake --build") != std::string::npos);

@@ -90,5 +90,6 @@ Subcommand register_stream(CLI::App& app);
 Subcommand register_sweep(CLI::App& app);
 Subcommand register_table1(CLI::App& app);
 Subcommand register_run_task(CLI::App& app);
+Subcommand register_rtl_cache(CLI::App& app);
 
 }  // namespace imapsim

@@ -89,6 +89,7 @@ struct RegressOptions {
     double timeout_s = 600;
     bool list = false;
     ExecFlags exec;
+    std::string rtl_cache;  // --rtl-cache
 };
 
 }  // namespace
@@ -117,9 +118,11 @@ Subcommand register_regress(CLI::App& app) {
         ->capture_default_str();
     sub->add_flag("--list", o->list, "list the selected cases and exit");
     add_exec_flags(sub, o->exec, "runs");
+    add_rtl_cache_flag(sub, o->rtl_cache);
 
     return {
         sub, [o, sub]() {
+            apply_rtl_cache_flag(o->rtl_cache);
             check_output_file("--junit", o->junit, false);  // before the suite, not after it
             check_output_file("--json", o->json_out, false);
             if (!o->work_dir.empty()) {

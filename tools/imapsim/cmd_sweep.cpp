@@ -34,6 +34,7 @@ struct SweepOptions {
     AlgoFlags algo;
     MachineFlags machine;
     ExecFlags exec;
+    std::string rtl_cache;  // --rtl-cache
 };
 
 }  // namespace
@@ -104,9 +105,11 @@ Subcommand register_sweep(CLI::App& app) {
     add_algo_flags(sub, o->algo);
     add_machine_flags(sub, o->machine);
     add_exec_flags(sub, o->exec, "points");
+    add_rtl_cache_flag(sub, o->rtl_cache);
 
     return {
         sub, [o, sub]() {
+            apply_rtl_cache_flag(o->rtl_cache);
             // Outputs (checked before the run).
             const std::optional<sw::Metric> metric = sw::metric_from_name(o->y);
             if (!metric)

@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
 #ifdef IMAPSIM_HAVE_STREAM
     subs.push_back(register_stream(app));
 #endif
+#ifdef IMAPSIM_HAVE_RTL
+    subs.push_back(register_rtl_cache(app));
+#endif
     subs.push_back(register_sweep(app));
     subs.push_back(register_table1(app));
     subs.push_back(register_run_task(app));

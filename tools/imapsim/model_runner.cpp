@@ -7,6 +7,9 @@
 #include <cstdio>
 
 #include "imap/engine/result.hpp"
+#ifdef IMAPSIM_HAVE_RTL
+#include "imap/rtl/cache.hpp"
+#endif
 
 namespace imapsim {
 
@@ -45,6 +48,23 @@ void add_rtl_flags(CLI::App* app, RtlFlags& f) {
                     "--model lockstep: waves (.vcd / .fst) of the RTL before a divergence, '' = "
                     "none [default: rtl_divergence.fst]")
         ->group(grp);
+    add_rtl_cache_flag(app, f.cache_dir);
+}
+
+void add_rtl_cache_flag(CLI::App* app, std::string& dir) {
+    app->add_option("--rtl-cache", dir,
+                    "folder of the RTL configurations built on demand (any --pes, --mem-bytes, "
+                    "--ext-bytes not built in; docs/rtl.md), 'off' to refuse them [default: "
+                    "$IMAP_RTL_CACHE, else ~/.cache/imapsim/rtl]")
+        ->group("RTL / lockstep (docs/rtl.md)");
+}
+
+void apply_rtl_cache_flag(const std::string& dir) {
+#ifdef IMAPSIM_HAVE_RTL
+    if (!dir.empty()) imap::rtl::set_cache_dir(dir);
+#else
+    (void)dir;
+#endif
 }
 
 void add_wave_flags(CLI::App* app, WaveFlags& f) {

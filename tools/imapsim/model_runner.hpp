@@ -31,6 +31,10 @@ using imap::engine::camera_pixel_mhz;
 // --model rtl / lockstep options (docs/rtl.md), handed to run_model.
 using RtlFlags = imap::engine::RtlOptions;
 void add_rtl_flags(CLI::App* app, RtlFlags& f);
+// --rtl-cache DIR (docs/rtl.md, "Any configuration on demand"); applied for
+// this process and the ones it starts.
+void add_rtl_cache_flag(CLI::App* app, std::string& dir);
+void apply_rtl_cache_flag(const std::string& dir);
 
 // Waves (docs/waves.md): --vcd FILE (off when empty), --trace-pes,
 // --trace-window, --trace-signals, --trace-limit-mb.

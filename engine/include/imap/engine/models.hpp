@@ -33,6 +33,9 @@ struct RtlOptions {
     std::string inject_fault;  // INSTR:PE:REG:MASK
     std::string mutant;        // planted bug (mutation-check configuration)
     std::string lockstep_waves = "rtl_divergence.fst";  // waves before a divergence, "" none
+    // the RTL cache's folder for a configuration not built in ("" = the
+    // default, imap/rtl/cache.hpp; "off" = refuse it)
+    std::string cache_dir;
 };
 
 // Waves (docs/waves.md): the file (off when empty), the PEs, the window,
