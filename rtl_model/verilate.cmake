@@ -16,7 +16,8 @@ set(IMAP_RTL_VERIF_FILES imap_board.sv imap_cp_monitor.sv imap_tb.sv)
 
 # imap_rtl_verilate(TARGET PREFIX HDL_DIR VERIF_DIR PES MEM EXT VARIANT ASSERT COVERAGE)
 # VARIANT: fast (no tracing), vcd, fst (tracing compiled in, off until a run
-# asks) or mut (the planted bugs of the mutation check selectable).
+# asks), mut (the planted bugs of the mutation check selectable) or mutfst
+# (mut with FST tracing compiled in: waves of the window before a failure).
 function(imap_rtl_verilate target prefix hdl verif pes mem ext variant assert coverage)
   set(extra "")
   set(args -I${hdl} -O3 --x-assign fast --x-initial 0 -Wall -Wno-fatal -Wno-DECLFILENAME
@@ -26,6 +27,9 @@ function(imap_rtl_verilate target prefix hdl verif pes mem ext variant assert co
   elseif(variant STREQUAL "fst")
     set(extra TRACE_FST TRACE_STRUCTS)
   elseif(variant STREQUAL "mut")
+    list(APPEND args +define+IMAP_MUTANTS)
+  elseif(variant STREQUAL "mutfst")
+    set(extra TRACE_FST TRACE_STRUCTS)
     list(APPEND args +define+IMAP_MUTANTS)
   endif()
   if(assert)

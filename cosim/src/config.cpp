@@ -265,9 +265,15 @@ std::string built_list(int waves) {
 }
 }  // namespace
 
+namespace {
+// any variant runs untraced (IMAP_RTL_FST_ALL builds them all traced)
+bool any_variant(const isa::MachineConfig& cfg, bool mut) {
+    return find(cfg, 0, mut) || find(cfg, 1, mut) || find(cfg, 2, mut);
+}
+}  // namespace
+
 bool has_configuration(const isa::MachineConfig& cfg) {
-    // any variant runs untraced (IMAP_RTL_FST_ALL builds them all traced)
-    return find(cfg, 0, false) || find(cfg, 1, false) || find(cfg, 2, false);
+    return any_variant(cfg, false);
 }
 
 int waves_format(const std::string& path) {
@@ -342,7 +348,7 @@ void check_runnable(const isa::MachineConfig& cfg, int waves, bool needs_mutants
             throw isa::ConfigError(
                 "RTL: this build has no mutation-check model (configure with "
                 "-DIMAP_RTL_MUTANTS=ON)");
-        if (!find(cfg, 0, true))
+        if (!any_variant(cfg, true))
             throw isa::ConfigError(
                 "RTL: the mutation-check model is built for pes=8 mem_bytes=1024 "
                 "ext_bytes=65536 only (asked: " +

@@ -52,8 +52,10 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
     const ConfigInfo& ci = pick_config(cfg, lcfg.rtl);
     const std::string& wpath = lcfg.divergence_waves;
     const int wformat = waves_format(wpath);
+    // the replay that writes the waves runs the same model (with the same
+    // planted bug for the mutation check)
     const ConfigInfo* replay =
-        wformat == 0 || !lcfg.rtl.mutant.empty() ? nullptr : traced_config(cfg, wformat);
+        wformat == 0 ? nullptr : traced_config(cfg, wformat, !lcfg.rtl.mutant.empty());
     claim_process("run_lockstep");
 
     tlm::TlmConfig tc;
@@ -99,8 +101,9 @@ LockstepResult run_lockstep(const isa::MachineConfig& cfg, const isa::Program& p
             if (wpath.empty())
                 chk.div.waves = "";
             else if (!lcfg.rtl.mutant.empty())
-                // a traced variant would replay the design without the bug
-                chk.div.waves = "no waves: the mutation-check model has no traced variant";
+                chk.div.waves =
+                    std::string("no waves: the mutation-check model of this build has no ") +
+                    (wformat == 2 ? "FST" : "VCD") + "-traced variant (FST: IMAP_RTL_FST_ALL=ON)";
             else
                 chk.div.waves = std::string("no waves: configuration ") + ci.name + " has no " +
                                 (wformat == 2 ? "FST" : "VCD") +

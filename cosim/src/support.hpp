@@ -15,8 +15,9 @@ namespace imap::rtl::detail {
 // The configuration variant for cfg (fast, traced by the waves' extension,
 // or the mutation-check model); isa::ConfigError when not built.
 const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rcfg);
-// The traced variant (1 VCD, 2 FST) of cfg's configuration, or nullptr.
-const ConfigInfo* traced_config(const isa::MachineConfig& cfg, int format);
+// The traced variant (1 VCD, 2 FST) of cfg's configuration (of the
+// mutation-check model with `mutants`), or nullptr.
+const ConfigInfo* traced_config(const isa::MachineConfig& cfg, int format, bool mutants = false);
 void fill_job(Job& j, const isa::MachineConfig& cfg, const isa::Program& prog,
               const std::vector<std::pair<int, uint32_t>>& params, const Image& left,
               const Image& right, int out_w, int out_h);

@@ -48,10 +48,10 @@ const ConfigInfo& pick_config(const isa::MachineConfig& cfg, const RtlConfig& rc
                                         : "RTL: configuration not built");
 }
 
-const ConfigInfo* traced_config(const isa::MachineConfig& cfg, int format) {
+const ConfigInfo* traced_config(const isa::MachineConfig& cfg, int format, bool mutants) {
     for (const ConfigInfo& c : configs())
         if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
-            c.trace == format && !c.mutants)
+            c.trace == format && (c.mutants != 0) == mutants)
             return &c;
     return nullptr;
 }

@@ -12,7 +12,8 @@
 //   report                the planted bug sub_mask trips a_pe_masked_wb in
 //                         lockstep: the run stops with the lockstep's report
 //                         (instruction, cycle, PC, PE, assertion) before the
-//                         compare of that edge
+//                         compare of that edge, and the waves of the 20
+//                         cycles before it
 //   rtl_report            the same on the RTL alone (run_rtl): an
 //                         AssertionFailure, an isa::Fault (imapsim: exit 3)
 #define BOOST_TEST_MODULE rtl_assert
@@ -36,6 +37,10 @@ void run_report(bool lockstep) {
         rtl::LockstepConfig lc;
         lc.rtl.mutant = "sub_mask";
         lc.waves_cycles = 20;
+        const std::string waves = (std::filesystem::temp_directory_path() /
+                                   ("rtl_assert_" + std::to_string(::getpid()) + ".fst"))
+                                      .string();
+        lc.divergence_waves = waves;
         const rtl::LockstepResult r =
             rtl::run_lockstep(p.cfg, p.prog, p.params, p.left, p.right, p.out_w, p.out_h, &out, lc);
         BOOST_REQUIRE(r.diverged);
@@ -52,8 +57,15 @@ void run_report(bool lockstep) {
                         "RTL assertion a_pe_masked_wb failed at instruction 70 (cycle ", 0) == 0);
         BOOST_CHECK(d.message().find("pc 71: sub r1, r1, r4) in PE 1: a masked PE") !=
                     std::string::npos);
-        // the mutation-check model has no traced variant: the report says so
-        BOOST_CHECK(d.waves.find("no waves") == 0);
+        // the waves of the 20 cycles before the failing edge, from a replay
+        // of the same model with the same planted bug
+        BOOST_CHECK_EQUAL(d.waves, "waves of machine cycles " + std::to_string(d.cycle - 20) +
+                                       ".." + std::to_string(d.cycle) + " -> " + waves);
+        std::error_code ec;
+        BOOST_CHECK_GT(std::filesystem::file_size(waves, ec), 1000u);
+        BOOST_CHECK(!ec);
+        std::filesystem::remove(waves, ec);
+        std::filesystem::remove(rtl::gtkw_path(waves), ec);
         // the RTL stopped at the failing edge: the sub (whose write-back
         // the assertion caught) is the last instruction the design committed
         BOOST_CHECK_EQUAL(r.instructions, 71u);
