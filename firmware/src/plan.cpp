@@ -72,10 +72,20 @@ using detail::ceil_div;
 // batch = min(P / span, this).
 constexpr int kMaxBatchLines = 255;
 
+// The census's ROI width in one video segment (the codes read pixels x-r..x+r).
+std::string one_segment_limit(const FramePlan& fp) {
+    std::ostringstream os;
+    os << "the ROI's width in one video segment (a segment is " << fp.P
+       << " pixels, one per PE): the ROI is " << fp.roi.w << " wide; needs --pes >= " << fp.roi.w
+       << ", or a ROI of at most " << fp.P << " pixels wide (--roi)";
+    return os.str();
+}
+
 // Why the ROI's lines are not in one batch, for the options that need them
 // there: what a batch holds on this machine (P PEs, `span` per line, at most
 // kMaxBatchLines; with the vote, fewer than 3 lines per batch run one line
-// per batch) and what would hold them (--pes, or a shorter ROI).
+// per batch) and what would hold them (--pes, or a shorter ROI); with the
+// census, also its segment when the ROI is wider than P.
 std::string one_batch_limit(const FramePlan& fp, const golden::Params& p, int span, bool tiny) {
     const int H = fp.roi.h, per = fp.P / span, cap = std::min(per, kMaxBatchLines);
     std::ostringstream os;
@@ -103,6 +113,9 @@ std::string one_batch_limit(const FramePlan& fp, const golden::Params& p, int sp
            << " lines with --pes >= " << span * kMaxBatchLines;
     else
         os << ": use a ROI of at most " << kMaxBatchLines << " lines (--roi)";
+    // the next refusal, so that the advice is not half of what is needed
+    if (p.kc > 0 && fp.roi.w > fp.P)
+        os << "; --kc " << p.kc << " (census) also needs " << one_segment_limit(fp);
     return os.str();
 }
 
@@ -154,10 +167,7 @@ void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir,
     if (p.kc > 0 && fp.batches.size() > 1) throw census_not_one_batch(fp, p, span, tiny);
     if (p.kc > 0 && fp.nseg > 1) {
         std::ostringstream os;
-        os << "firmware: --kc " << p.kc << " (census) needs the ROI's width in one video segment "
-           << "(a segment is " << fp.P << " pixels, one per PE): the ROI is " << fp.roi.w
-           << " wide; needs --pes >= " << fp.roi.w << ", or a ROI of at most " << fp.P
-           << " pixels wide (--roi)";
+        os << "firmware: --kc " << p.kc << " (census) needs " << one_segment_limit(fp);
         throw FirmwareError(os.str());
     }
 }

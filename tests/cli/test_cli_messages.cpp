@@ -88,7 +88,10 @@ BOOST_AUTO_TEST_CASE(a_roi_taller_than_a_batch_names_the_255_line_limit) {
             "a batch holds at most 128 lines (256 PEs at 2 per line in joint mode; "
             "never more than 255, the re-layout's one-byte row index, whatever "
             "--pes): use a ROI of at most 128 lines (--roi), or of at most 255 "
-            "lines with --pes >= 510\n");
+            "lines with --pes >= 510; --kc 4 (census) also needs the ROI's width "
+            "in one video segment (a segment is 256 pixels, one per PE): the ROI "
+            "is 384 wide; needs --pes >= 384, or a ROI of at most 256 pixels wide "
+            "(--roi)\n");
 }
 
 BOOST_AUTO_TEST_CASE(help_says_what_no_command_does_and_the_exit_codes) {

@@ -58,11 +58,15 @@ BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_names_the_255_line_batch_not_the_pes)
                    "whatever --pes; 1024 PEs at 2 per line in joint mode would hold 512): use a "
                    "ROI of at most 255 lines (--roi)");
     // 256 PEs: both limits (it said "needs 576 PEs, have 256": 576 hold 255)
-    BOOST_TEST(refusal(quality(16), tsukuba, 256, 4096) ==
-               std::string(kAggry2) +
-                   "a batch holds at most 128 lines (256 PEs at 2 per line in joint mode; never "
-                   "more than 255, the re-layout's one-byte row index, whatever --pes): use a ROI "
-                   "of at most 128 lines (--roi), or of at most 255 lines with --pes >= 510");
+    BOOST_TEST(
+        refusal(quality(16), tsukuba, 256, 4096) ==
+        std::string(kAggry2) +
+            "a batch holds at most 128 lines (256 PEs at 2 per line in joint mode; never "
+            "more than 255, the re-layout's one-byte row index, whatever --pes): use a ROI "
+            "of at most 128 lines (--roi), or of at most 255 lines with --pes >= 510; --kc 4 "
+            "(census) also needs the ROI's width in one video segment (a segment is 256 "
+            "pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI of at "
+            "most 256 pixels wide (--roi)");
     // the advice plans: 255 lines on 510 PEs, 128 lines on 256
     BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 255}, 510, 4096) == "");
     BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 256}, 1024, 4096) != "");
@@ -70,12 +74,20 @@ BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_names_the_255_line_batch_not_the_pes)
 }
 
 BOOST_AUTO_TEST_CASE(too_few_pes_for_the_vertical_window_names_the_pes_needed) {
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 16) ==
                "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
                "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
                "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
                "most 8 lines (--roi)");
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 40) == "");
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 40) == "");
+    // wider than P: the census's segment too, so that the advice is whole
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
+               "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
+               "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
+               "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
+               "most 8 lines (--roi); --kc 4 (census) also needs the ROI's width in one video "
+               "segment (a segment is 16 pixels, one per PE): the ROI is 30 wide; needs --pes >= "
+               "30, or a ROI of at most 16 pixels wide (--roi)");
     BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 8}, 16) == "");
     // the one-line-per-batch mode (bidir, 4 PEs, the vote)
     g::Params t;
@@ -100,12 +112,13 @@ BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_a_segment_hold) {
                "hold 1024): use a ROI of at most 255 lines (--roi)");
     BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 255}, 1024, 2048) == "");
     // the one-line-per-batch mode in single mode: P / 1 lines, not 2 per line
-    BOOST_TEST(refusal(census(g::Mode::Single, 4), g::Roi{0, 0, 8, 8}, 2) ==
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 2) ==
                "firmware: --kc 4 (census) needs the ROI's 8 lines in one batch (the codes read "
                "the lines y-2..y+2 of the ROI): a batch holds at most 2 lines (2 PEs at 1 per line "
                "in single mode; with the vote, fewer than 3 lines per batch run one line per "
                "batch): needs --pes >= 8, or a ROI of at most 2 lines (--roi)");
-    BOOST_TEST(refusal(census(g::Mode::Single, 4), g::Roi{0, 0, 8, 8}, 8) == "");
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 8) == "");
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 2}, 2) == "");
     // the width in one video segment
     BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 32) ==
                "firmware: --kc 4 (census) needs the ROI's width in one video segment (a segment "
