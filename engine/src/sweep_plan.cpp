@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -188,9 +189,14 @@ Prepared prepare(const Spec& s, const std::vector<size_t>& pt, bool want_phases)
                            std::to_string(rw) + "x" + std::to_string(rh), "--roi", roi_txt});
     else
         a.insert(a.end(), {"--left", s.input.left, "--right", s.input.right, "--roi", roi_txt});
-    for (const char* n : {"D", "km", "kb", "gb", "Wo", "Wd", "mode"})
-        if (const std::string* v = value_of(s, pt, n))
-            a.insert(a.end(), {std::string("--") + n, *v});
+    // every algorithm parameter the point was planned with: the child starts
+    // from the paper preset, so the base's preset and A.9 options go too
+    a.insert(a.end(), {"--D", std::to_string(p.D), "--km", std::to_string(p.km), "--kb",
+                       std::to_string(p.kb), "--gb", std::to_string(p.gb), "--Wo",
+                       std::to_string(p.Wo), "--Wd", std::to_string(p.Wd)});
+    if (p.mode != g::Mode::Joint) a.insert(a.end(), {"--mode", g::to_string(p.mode)});
+    std::istringstream options(g::options_string(p));  // "--mode joint --kc 4 ..."
+    for (std::string w; options >> w;) a.push_back(w);
     a.insert(a.end(), s.base_args.begin(), s.base_args.end());
     for (const auto& [n, v] : machine) {
         const std::string f = machine_flag(n);

@@ -64,6 +64,71 @@ namespace {
 
 using detail::ceil_div;
 
+// The most lines a batch holds, whatever the PE count: the re-layout
+// addresses line y's video and output rows with a one-byte per-PE index
+// (relayout.inc: ldx / stx [r14 + row], y in 0..255). Measured with the cap
+// lifted (64x300 ROI on 1024 PEs, single mode): without the vote line 256 is
+// the first wrong one, with it line 255 (its vote reads line 256). Lines per
+// batch = min(P / span, this).
+constexpr int kMaxBatchLines = 255;
+
+// The census's ROI width in one video segment (the codes read pixels x-r..x+r).
+std::string one_segment_limit(const FramePlan& fp) {
+    std::ostringstream os;
+    os << "the ROI's width in one video segment (a segment is " << fp.P
+       << " pixels, one per PE): the ROI is " << fp.roi.w << " wide; needs --pes >= " << fp.roi.w
+       << ", or a ROI of at most " << fp.P << " pixels wide (--roi)";
+    return os.str();
+}
+
+// Why the ROI's lines are not in one batch, for the options that need them
+// there: what a batch holds on this machine (P PEs, `span` per line, at most
+// kMaxBatchLines; with the vote, fewer than 3 lines per batch run one line
+// per batch) and what would hold them (--pes, or a shorter ROI); with the
+// census, also its segment when the ROI is wider than P.
+std::string one_batch_limit(const FramePlan& fp, const golden::Params& p, int span, bool tiny) {
+    const int H = fp.roi.h, per = fp.P / span, cap = std::min(per, kMaxBatchLines);
+    std::ostringstream os;
+    const auto machine = [&] {
+        os << fp.P << " PEs at " << span << " per line in " << golden::to_string(p.mode) << " mode";
+    };
+    os << "a batch holds at most " << cap << " line" << (cap == 1 ? "" : "s") << " (";
+    if (per > kMaxBatchLines) {
+        os << "the re-layout's one-byte row index, whatever --pes; ";
+        machine();
+        os << " would hold " << per << ")";
+    } else {
+        machine();
+        if (tiny) os << "; with the vote, fewer than 3 lines per batch run one line per batch";
+        if (H > kMaxBatchLines)
+            os << "; never more than " << kMaxBatchLines
+               << ", the re-layout's one-byte row index, whatever --pes";
+        os << ")";
+    }
+    if (H <= kMaxBatchLines)
+        os << ": needs --pes >= " << span * H << ", or a ROI of at most " << cap
+           << " lines (--roi)";
+    else if (cap < kMaxBatchLines)
+        os << ": use a ROI of at most " << cap << " lines (--roi), or of at most " << kMaxBatchLines
+           << " lines with --pes >= " << span * kMaxBatchLines;
+    else
+        os << ": use a ROI of at most " << kMaxBatchLines << " lines (--roi)";
+    // the next refusal, so that the advice is not half of what is needed
+    if (p.kc > 0 && fp.roi.w > fp.P)
+        os << "; --kc " << p.kc << " (census) also needs " << one_segment_limit(fp);
+    return os.str();
+}
+
+// The census needs the ROI's lines in one batch (the codes read lines y-r..y+r).
+FirmwareError census_not_one_batch(const FramePlan& fp, const golden::Params& p, int span,
+                                   bool tiny) {
+    std::ostringstream os;
+    os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << fp.roi.h
+       << " lines in one batch (the codes read the lines y-" << p.census << "..y+" << p.census
+       << " of the ROI): " << one_batch_limit(fp, p, span, tiny);
+    return FirmwareError(os.str());
+}
+
 // The batches of the ROI's H lines (fp.lpb lines per batch at most), the
 // most lines in one, the video segments, and the options that need all the
 // ROI's lines in one batch (or its width in one segment).
@@ -96,28 +161,24 @@ void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir,
         std::ostringstream os;
         os << "firmware: --agg-ry " << p.agg_ry << " (vertical window) needs the ROI's " << H
            << " lines in one batch (the match cost of line y sums the lines y-" << p.agg_ry
-           << "..y+" << p.agg_ry << " of the ROI): needs " << span * H << " PEs, have " << fp.P;
+           << "..y+" << p.agg_ry << " of the ROI): " << one_batch_limit(fp, p, span, tiny);
         throw FirmwareError(os.str());
     }
-    if (p.kc > 0 && fp.batches.size() > 1) {
-        std::ostringstream os;
-        os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << H
-           << " lines in one batch (the codes read the lines y-" << p.census << "..y+" << p.census
-           << " of the ROI): needs " << span * H << " PEs, have " << fp.P;
-        throw FirmwareError(os.str());
-    }
+    if (p.kc > 0 && fp.batches.size() > 1) throw census_not_one_batch(fp, p, span, tiny);
     if (p.kc > 0 && fp.nseg > 1) {
         std::ostringstream os;
-        os << "firmware: --kc " << p.kc << " (census) needs the ROI's width in one video segment: "
-           << "needs " << fp.roi.w << " PEs, have " << fp.P;
+        os << "firmware: --kc " << p.kc << " (census) needs " << one_segment_limit(fp);
         throw FirmwareError(os.str());
     }
 }
 
-// "does not fit" for `need` bytes of local memory per PE for `what`.
+// "does not fit" for `need` bytes of local memory per PE for `what`: a lower
+// bound, each check seeing only its rows as placed for this memory (more
+// memory moves the window's copies at its top and may undo split video
+// rows, so the frame can need more), hence "at least".
 FirmwareError rows_do_not_fit(int need, const char* what, int mem) {
     std::ostringstream os;
-    os << "does not fit: needs " << need << " bytes of local memory per PE for " << what
+    os << "does not fit: needs at least " << need << " bytes of local memory per PE for " << what
        << " (have " << mem << ", mem_bytes)";
     return FirmwareError(os.str());
 }
@@ -155,7 +216,8 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
         const int rows_end = f.census > 0 ? fp.cinr + fp.hbmax : fp.inr + fp.hbmax;
         if (rows_end > f.agg_src) {
             std::ostringstream os;
-            os << "does not fit: --agg-rx " << f.agg << " needs " << rows_end - f.agg_src + mem
+            os << "does not fit: --agg-rx " << f.agg << " needs at least "
+               << rows_end - f.agg_src + mem
                << " bytes of local memory per PE for the video rows beside the line buffers (have "
                << mem << ", mem_bytes)";
             throw FirmwareError(os.str());
@@ -184,16 +246,11 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     fp.spare = spare;
     const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;
     const int span = bidir || spare ? 2 : 1;
-    fp.lpb = std::min(fp.P / span, 255);
+    fp.lpb = std::min(fp.P / span, kMaxBatchLines);
     // Too few lines per batch for the vote across batches: one line at a
     // time, every pointer table kept in the external memory.
     const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
-    if (p.kc > 0 && tiny)
-        throw FirmwareError(
-            "firmware: --kc " + std::to_string(p.kc) +
-            " (census) needs the ROI's lines in one batch: " + std::to_string(roi.h) +
-            " lines on " + std::to_string(fp.P) + " PEs run one line per batch (needs at least " +
-            std::to_string(2 * roi.h) + " PEs, or --kc 0)");
+    if (p.kc > 0 && tiny) throw census_not_one_batch(fp, p, span, tiny);
     fp.f = detail::plan_forward_impl(p, roi.w, cfg, tiny, true);  // range and DP memory checks
     if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {

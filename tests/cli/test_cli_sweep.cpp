@@ -680,3 +680,22 @@ BOOST_AUTO_TEST_CASE(y_metric_and_pareto_view) {
         BOOST_TEST(listed == !dominated, "pes=" << a.at("pes"));
     }
 }
+
+// A point runs the algorithm it was planned with: the preset and the A.9
+// options reach the child `imapsim run` (they were dropped, so quality
+// points were planned as quality and ran the paper's parameters in bidir).
+BOOST_AUTO_TEST_CASE(a_preset_sweep_point_runs_the_preset) {
+    const fs::path d = tmpdir();
+    const fs::path csv = d / "quality.csv";
+    const Result r =
+        run("sweep --model core --preset quality --roi-size 32x16 --D 8 --pes 32 --csv " +
+            csv.string());
+    BOOST_TEST_INFO(r.out);
+    BOOST_REQUIRE_EQUAL(r.code, 0);
+    const auto rows = records(parse_csv(slurp(csv)));
+    BOOST_REQUIRE_EQUAL(rows.size(), 1u);
+    const std::string point = "--model core --size 32x16 --roi 0,0,32,16 --D 8 --pes 32";
+    const uint64_t quality = direct_cycles("--preset quality " + point, d / "quality.json");
+    BOOST_TEST(std::stoull(rows[0].at("cycles")) == quality);
+    BOOST_TEST(quality != direct_cycles(point, d / "paper.json"));
+}

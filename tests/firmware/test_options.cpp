@@ -297,7 +297,9 @@ BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
     } catch (const fw::FirmwareError& e) {
         BOOST_TEST(std::string(e.what()) ==
                    "firmware: --kc 4 (census) needs the ROI's 12 lines in one batch (the codes "
-                   "read the lines y-2..y+2 of the ROI): needs 24 PEs, have 16");
+                   "read the lines y-2..y+2 of the ROI): a batch holds at most 8 lines (16 PEs "
+                   "at 2 per line in bidir mode): needs --pes >= 24, or a ROI of at most 8 lines "
+                   "(--roi)");
     }
     cfg.pes = 32;  // a 40-wide ROI needs two video segments
     try {
@@ -305,8 +307,9 @@ BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
         BOOST_ERROR("census over two segments was accepted");
     } catch (const fw::FirmwareError& e) {
         BOOST_TEST(std::string(e.what()) ==
-                   "firmware: --kc 4 (census) needs the ROI's width in one video segment: needs "
-                   "40 PEs, have 32");
+                   "firmware: --kc 4 (census) needs the ROI's width in one video segment (a "
+                   "segment is 32 pixels, one per PE): the ROI is 40 wide; needs --pes >= 40, or "
+                   "a ROI of at most 32 pixels wide (--roi)");
     }
     cfg.pes = 2;  // the one-line-per-batch mode
     p.mode = g::Mode::Single;
@@ -314,8 +317,8 @@ BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
         fw::plan_frame(p, g::Roi{0, 0, 8, 8}, cfg);
         BOOST_ERROR("census in the one-line-per-batch mode was accepted");
     } catch (const fw::FirmwareError& e) {
-        BOOST_TEST(std::string(e.what()).find("--kc 4 (census) needs the ROI's lines in one "
-                                              "batch: 8 lines on 2 PEs") != std::string::npos);
+        BOOST_TEST(std::string(e.what()).find("--kc 4 (census) needs the ROI's 8 lines in one "
+                                              "batch") != std::string::npos);
     }
 }
 

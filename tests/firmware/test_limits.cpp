@@ -1,0 +1,147 @@
+// The planner's refusals name the true limit (issue 30, item 4): the
+// options that need the ROI's lines in one batch (--agg-ry, --kc) say what a
+// batch holds on the machine (P / span lines, never more than 255: the
+// re-layout's one-byte row index) and what would hold the ROI, and that
+// advice is checked to plan; the census's one video segment; the local
+// memory rows as lower bounds ("at least"). Exact messages, from
+// fw::plan_frame on the parameters, ROI and machine of each case.
+#define BOOST_TEST_MODULE firmware_limits
+#include <boost/test/unit_test.hpp>
+
+#include "fw_test_util.hpp"
+
+using namespace fwtest;
+
+namespace {
+
+// The planner's message for p on roi and a machine of `pes` PEs and `mem`
+// bytes of local memory per PE, or "" when it plans.
+std::string refusal(const g::Params& p, const g::Roi& roi, int pes, int mem = 1024) {
+    isa::MachineConfig cfg;
+    cfg.pes = static_cast<uint32_t>(pes);
+    cfg.mem_bytes = static_cast<uint32_t>(mem);
+    try {
+        fw::plan_frame(p, roi, cfg);
+    } catch (const fw::FirmwareError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+g::Params quality(int D) {
+    g::Params p = g::preset("quality");
+    p.D = D;
+    return p;
+}
+
+g::Params census(g::Mode mode, int D) {
+    g::Params p;
+    p.kc = 4;
+    p.mode = mode;
+    p.D = D;
+    return p;
+}
+
+const char* const kAggry2 =
+    "firmware: --agg-ry 2 (vertical window) needs the ROI's 288 lines in one batch (the match "
+    "cost of line y sums the lines y-2..y+2 of the ROI): ";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_names_the_255_line_batch_not_the_pes) {
+    // tsukuba's 384x288 at the quality preset: 1,024 PEs would hold 512
+    // lines, so the PE count is not the limit (it said "needs 576 PEs, have 1024")
+    const g::Roi tsukuba{0, 0, 384, 288};
+    BOOST_TEST(refusal(quality(16), tsukuba, 1024, 4096) ==
+               std::string(kAggry2) +
+                   "a batch holds at most 255 lines (the re-layout's one-byte row index, "
+                   "whatever --pes; 1024 PEs at 2 per line in joint mode would hold 512): use a "
+                   "ROI of at most 255 lines (--roi)");
+    // 256 PEs: both limits (it said "needs 576 PEs, have 256": 576 hold 255)
+    BOOST_TEST(
+        refusal(quality(16), tsukuba, 256, 4096) ==
+        std::string(kAggry2) +
+            "a batch holds at most 128 lines (256 PEs at 2 per line in joint mode; never "
+            "more than 255, the re-layout's one-byte row index, whatever --pes): use a ROI "
+            "of at most 128 lines (--roi), or of at most 255 lines with --pes >= 510; --kc 4 "
+            "(census) also needs the ROI's width in one video segment (a segment is 256 "
+            "pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI of at "
+            "most 256 pixels wide (--roi)");
+    // the advice plans: 255 lines on 510 PEs, 128 lines on 256
+    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 255}, 510, 4096) == "");
+    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 256}, 1024, 4096) != "");
+    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 256, 128}, 256, 4096) == "");
+}
+
+BOOST_AUTO_TEST_CASE(too_few_pes_for_the_vertical_window_names_the_pes_needed) {
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 16) ==
+               "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
+               "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
+               "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
+               "most 8 lines (--roi)");
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 40) == "");
+    // wider than P: the census's segment too, so that the advice is whole
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
+               "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
+               "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
+               "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
+               "most 8 lines (--roi); --kc 4 (census) also needs the ROI's width in one video "
+               "segment (a segment is 16 pixels, one per PE): the ROI is 30 wide; needs --pes >= "
+               "30, or a ROI of at most 16 pixels wide (--roi)");
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 8}, 16) == "");
+    // the one-line-per-batch mode (bidir, 4 PEs, the vote)
+    g::Params t;
+    t.agg_ry = 1;
+    t.D = 4;
+    BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 5}, 4) ==
+               "firmware: --agg-ry 1 (vertical window) needs the ROI's 5 lines in one batch (the "
+               "match cost of line y sums the lines y-1..y+1 of the ROI): a batch holds at most 2 "
+               "lines (4 PEs at 2 per line in bidir mode; with the vote, fewer than 3 lines per "
+               "batch run one line per batch): needs --pes >= 10, or a ROI of at most 2 lines "
+               "(--roi)");
+    BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 5}, 10) == "");
+    BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 2}, 4) == "");
+}
+
+BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_a_segment_hold) {
+    // single mode on 1,024 PEs: one PE per line, still at most 255 lines
+    BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 300}, 1024) ==
+               "firmware: --kc 4 (census) needs the ROI's 300 lines in one batch (the codes read "
+               "the lines y-2..y+2 of the ROI): a batch holds at most 255 lines (the re-layout's "
+               "one-byte row index, whatever --pes; 1024 PEs at 1 per line in single mode would "
+               "hold 1024): use a ROI of at most 255 lines (--roi)");
+    BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 255}, 1024, 2048) == "");
+    // the one-line-per-batch mode in single mode: P / 1 lines, not 2 per line
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 2) ==
+               "firmware: --kc 4 (census) needs the ROI's 8 lines in one batch (the codes read "
+               "the lines y-2..y+2 of the ROI): a batch holds at most 2 lines (2 PEs at 1 per line "
+               "in single mode; with the vote, fewer than 3 lines per batch run one line per "
+               "batch): needs --pes >= 8, or a ROI of at most 2 lines (--roi)");
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 8) == "");
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 2}, 2) == "");
+    // the width in one video segment
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 32) ==
+               "firmware: --kc 4 (census) needs the ROI's width in one video segment (a segment "
+               "is 32 pixels, one per PE): the ROI is 40 wide; needs --pes >= 40, or a ROI of at "
+               "most 32 pixels wide (--roi)");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 40) == "");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 32, 4}, 32) == "");
+}
+
+BOOST_AUTO_TEST_CASE(the_rows_name_a_lower_bound_of_the_local_memory) {
+    // --agg-rx 1, 128 lines on 256 PEs: the video rows beside the line
+    // buffers need 210 bytes, and then the output rows 315; the frame plans
+    // only from 338 bytes, so each figure is "at least"
+    g::Params p;
+    p.agg_rx = 1;
+    p.D = 8;
+    const g::Roi roi{0, 0, 64, 128};
+    BOOST_TEST(refusal(p, roi, 256, 200) ==
+               "does not fit: --agg-rx 1 needs at least 210 bytes of local memory per PE for the "
+               "video rows beside the line buffers (have 200, mem_bytes)");
+    BOOST_TEST(refusal(p, roi, 256, 210) ==
+               "does not fit: needs at least 315 bytes of local memory per PE for the output rows "
+               "(have 210, mem_bytes)");
+    BOOST_TEST(refusal(p, roi, 256, 337) != "");
+    BOOST_TEST(refusal(p, roi, 256, 338) == "");
+}
