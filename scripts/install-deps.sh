@@ -6,6 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libsystemc-dev          # SystemC 2.3.4 + TLM-2.0 (pkg-config: systemc)
+  zlib1g-dev              # zlib: the FST wave writer of the verilated models and of the RTL cache's entries
   libopencv-dev           # image I/O, rectification, reference matchers, plots
   libboost-test-dev       # Boost.Test (unit test framework)
   libcli11-dev            # command-line parsing
@@ -13,6 +14,8 @@ PACKAGES=(
   python3                 # helper scripts (scripts/model-speed.sh)
   verilator               # the RTL design verilated into SystemC models (rtl_model/, 5.006)
   yosys                   # generic-gate synthesis of the PE and the CP (area figures, 0.23)
+  nextpnr-ice40           # place and route on an iCE40 (scripts/rtl-pnr.sh, the design's Fmax; 0.4)
+  fpga-icestorm           # the iCE40 chip database nextpnr-ice40 reads (and icepack / icetime)
   valgrind                # memcheck test of a TLM run (scripts/valgrind.sh, CTest valgrind.tlm_run)
   gnuplot-nox             # sweep plots (pngcairo and svg terminals; docs/whatif.md)
   fonts-dejavu-core       # a font for gnuplot's cairo terminals

@@ -3,6 +3,8 @@
 // energy; an rtl / lockstep run takes its energy events from the
 // instruction-set model of the same program.
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "imap/engine/error.hpp"
 #include "imap/engine/models.hpp"
@@ -17,6 +19,7 @@
 #include "imap/rtl/area.hpp"
 #include "imap/rtl/cache.hpp"
 #include "imap/rtl/lockstep.hpp"
+#include "imap/rtl/pnr.hpp"
 #include "imap/rtl/system.hpp"
 #endif
 #ifdef IMAP_ENGINE_HAVE_WAVES
@@ -40,20 +43,33 @@ std::string model_names() {
     return s + "core (the bare instruction-set executor)";
 }
 
-void print_rtl_area() {
+std::vector<std::string> rtl_area_lines(double clock_mhz) {
+    std::vector<std::string> out;
 #ifdef IMAP_ENGINE_HAVE_RTL
     const imap::rtl::SynthFigures& s = imap::rtl::synthesis();
-    if (!s.available) {
-        std::printf("  RTL area                not synthesized (no yosys in this build)\n");
-        return;
-    }
-    std::printf(
-        "  RTL area (yosys, generic cells): %llu cells per PE, %llu per CP; %llu + %llu "
-        "memory bits\n",
-        static_cast<unsigned long long>(s.pe.cells), static_cast<unsigned long long>(s.cp.cells),
-        static_cast<unsigned long long>(s.pe.memory_bits),
-        static_cast<unsigned long long>(s.cp.memory_bits));
+    char b[256];
+    if (s.available)
+        std::snprintf(b, sizeof b,
+                      "  RTL area (yosys, generic cells): %llu cells per PE, %llu per CP; %llu + "
+                      "%llu memory bits",
+                      static_cast<unsigned long long>(s.pe.cells),
+                      static_cast<unsigned long long>(s.cp.cells),
+                      static_cast<unsigned long long>(s.pe.memory_bits),
+                      static_cast<unsigned long long>(s.cp.memory_bits));
+    else
+        std::snprintf(b, sizeof b,
+                      "  RTL area                not synthesized (no yosys in this build)");
+    out.push_back(b);
+    const std::string fmax = imap::rtl::fmax_text(imap::rtl::place_and_route(), clock_mhz);
+    if (!fmax.empty()) out.push_back("  RTL " + fmax);
+#else
+    (void)clock_mhz;
 #endif
+    return out;
+}
+
+void print_rtl_area(double clock_mhz) {
+    for (const std::string& l : rtl_area_lines(clock_mhz)) std::printf("%s\n", l.c_str());
 }
 
 void check_model_name(const std::string& m) {
@@ -190,7 +206,7 @@ ModelRun run_on_model(const std::string& model, const g::Params& p, const g::Roi
                                          {"waves_written", rr.waves_written}};
                 std::printf("  RTL design: configuration %s, %llu clocks\n",
                             rr.configuration.c_str(), static_cast<unsigned long long>(rr.clocks));
-                print_rtl_area();
+                print_rtl_area(cfg.clock_mhz);
             } else {
                 const rtl::LockstepResult lr = rtl::run_lockstep(
                     cfg, prog, fw::param_block(run.plan), fw::to_video_image(left),
@@ -286,6 +302,23 @@ nlohmann::json area_json(const isa::MachineConfig& cfg) {
                 {"cp_cells", a.cp_cells},
                 {"ext_bits", a.ext_bits}};
     }
+#endif
+    (void)cfg;
+    return nullptr;
+}
+
+nlohmann::json fmax_json(const isa::MachineConfig& cfg) {
+#ifdef IMAP_ENGINE_HAVE_RTL
+    // the design's timing from place and route (docs/rtl.md), like the area
+    // a property of the design: every model reports it (the sweep's mark)
+    const imap::rtl::PnrFigures& f = imap::rtl::place_and_route();
+    if (f.available)
+        return {{"mhz", f.fmax_mhz},
+                {"technology", f.technology},
+                {"configuration", f.configuration},
+                {"clock_mhz", cfg.clock_mhz},
+                {"clock_above", imap::rtl::above_fmax(f, cfg.clock_mhz)},
+                {"text", imap::rtl::fmax_text(f, cfg.clock_mhz)}};
 #endif
     (void)cfg;
     return nullptr;

@@ -155,6 +155,19 @@ void read_energy(const json& j, RunResult& r) {
     r.energy = std::move(x);
 }
 
+// The design's Fmax against the clock of a report or a stored result (both
+// write it as the object "design_fmax"; docs/rtl.md).
+std::optional<DesignFmax> read_design_fmax(const json& j) {
+    if (!j.contains("design_fmax") || !j["design_fmax"].is_object()) return std::nullopt;
+    const json& f = j["design_fmax"];
+    DesignFmax d;
+    d.mhz = f.at("mhz").get<double>();
+    d.clock_mhz = f.at("clock_mhz").get<double>();
+    d.clock_above = f.at("clock_above").get<bool>();
+    d.technology = f.value("technology", std::string());
+    return d;
+}
+
 }  // namespace
 
 json energy_json(const Energy& e) {
@@ -199,6 +212,7 @@ bool read_report(const json& rep, RunResult& r) {
             a.memory_bits = rep["area"].value("memory_bits", uint64_t{0});
             r.area = a;
         }
+        r.design_fmax = read_design_fmax(rep);
         r.has_report = true;
         return true;
     } catch (const std::exception& e) {
@@ -316,6 +330,11 @@ json to_json(const RunResult& r) {
         for (const auto& [n, c] : r.phases) ph.push_back({n, c});
         j["phases"] = ph;  // an array of pairs: keeps the program's order
         if (r.area) j["area"] = {{"cells", r.area->cells}, {"memory_bits", r.area->memory_bits}};
+        if (r.design_fmax)
+            j["design_fmax"] = {{"mhz", r.design_fmax->mhz},
+                                {"clock_mhz", r.design_fmax->clock_mhz},
+                                {"clock_above", r.design_fmax->clock_above},
+                                {"technology", r.design_fmax->technology}};
         j["pe_utilisation"] = r.pe_utilisation;
         if (r.bound_cycles > 0) {
             j["bounds"] = bounds_json(r.bounds);
@@ -356,6 +375,7 @@ RunResult result_from_json(const json& j) {
         if (j.contains("area"))
             r.area = Area{j["area"].at("cells").get<uint64_t>(),
                           j["area"].at("memory_bits").get<uint64_t>()};
+        r.design_fmax = read_design_fmax(j);
         r.pe_utilisation = j.value("pe_utilisation", 0.0);
         read_bounds(j, r);
         read_energy(j, r);

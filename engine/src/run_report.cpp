@@ -145,7 +145,7 @@ nlohmann::json divergence_report(const ModelRun& run, const g::Params& p, const 
 
 nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::Params& p,
                           const g::Roi& roi, const isa::MachineConfig& cfg, double golden_ms,
-                          const nlohmann::json& area) {
+                          const nlohmann::json& area, const nlohmann::json& design_fmax) {
     const fw::FrameResult& r = run.result;
     nlohmann::json j;
     j["model"] = run.model;
@@ -183,6 +183,7 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
     j["energy"]["tech"] = cfg.energy.tech;
     j["energy"]["tornado"] = tornado_json(run.energy.tornado);
     if (!area.is_null()) j["area"] = area;
+    if (!design_fmax.is_null()) j["design_fmax"] = design_fmax;
     for (const auto& [k, v] : run.model_info.items()) j[k] = v;
     j["params"] = params_json(run, p, roi, cfg);
     return j;

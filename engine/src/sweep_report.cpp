@@ -152,6 +152,11 @@ json to_json(const Plan& p, const Result& r) {
             o["dominant_share"] = rr.dominant_share();
             if (rr.area)
                 o["area"] = {{"cells", rr.area->cells}, {"memory_bits", rr.area->memory_bits}};
+            if (rr.design_fmax)
+                o["design_fmax"] = {{"mhz", rr.design_fmax->mhz},
+                                    {"clock_mhz", rr.design_fmax->clock_mhz},
+                                    {"clock_above", rr.design_fmax->clock_above},
+                                    {"technology", rr.design_fmax->technology}};
             if (rr.bound_cycles > 0) {
                 o["bounds"] = bounds_json(rr.bounds);
                 o["bound_cycles"] = rr.bound_cycles;

@@ -1,8 +1,9 @@
 // What a sweep prints: the metrics --y chooses (names, values, their text),
 // the table's header lines and one line per row (swept values, cycles,
 // time, the metric, fps, efficiency, memory, area, dominant phase, wall
-// time, result), and the summary lines (counts, knees, the least point of
-// the metric).
+// time, result, the mark of a clock above the design's Fmax), and the
+// summary lines (counts, the points above the Fmax, knees, the least point
+// of the metric).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -130,6 +131,10 @@ std::string dominant_text(const RunResult& r) {
 
 }  // namespace
 
+bool clock_above_fmax(const Row& r) {
+    return r.ran() && r.run->design_fmax && r.run->design_fmax->clock_above;
+}
+
 std::vector<std::string> header_lines(const Plan& p, const Executor* ex) {
     std::vector<std::string> out;
     std::string sizes;
@@ -197,6 +202,8 @@ std::string row_line(const Plan& p, const Row& r) {
             break;
     }
     const bool ran = r.ran();
+    if (clock_above_fmax(r))
+        result += fmt(" [clock > design Fmax %.1f MHz]", r.run->design_fmax->mhz);
     std::snprintf(b, sizeof b, "%10s %10s ", ran ? std::to_string(r.run->cycles).c_str() : "-",
                   ran ? fmt("%.3f", r.run->modeled_ms).c_str() : "-");
     l += b;
@@ -254,6 +261,23 @@ std::vector<std::string> summary_lines(const Plan& p, const Result& r) {
                               ? "  nothing ran: every point that fits failed"
                               : "  nothing ran: no point can run (every point does not fit or "
                                 "cannot run)");
+    }
+    // Points whose clock the design does not reach (docs/rtl.md, "Place and
+    // route (iCE40)"): modeled, but not a clock this design was shown to run at.
+    const Row* above = nullptr;
+    size_t n_above = 0;
+    for (const Row& row : r.rows)
+        if (clock_above_fmax(row)) {
+            ++n_above;
+            if (!above) above = &row;
+        }
+    if (above) {
+        const DesignFmax& f = *above->run->design_fmax;
+        std::snprintf(b, sizeof b,
+                      "  %zu point%s with the clock above the design's Fmax (%.1f MHz on %s, "
+                      "docs/rtl.md), marked [clock > design Fmax]",
+                      n_above, n_above == 1 ? "" : "s", f.mhz, f.technology.c_str());
+        out.push_back(b);
     }
     for (const Knee& k : r.knees) out.push_back("  " + k.explanation);
     // --y other than time: the point with the least of it.

@@ -160,3 +160,32 @@ BOOST_AUTO_TEST_CASE(flag_values_and_machine_settings) {
     m.sets = {"no_such_parameter=1"};
     BOOST_CHECK_THROW(e::machine_config(m), e::Error);
 }
+
+// The design's Fmax (docs/rtl.md, "Place and route (iCE40)"): the run
+// summary's RTL lines and the report's "design_fmax" state it against the
+// clock, above it at 1000 MHz, within it at 1 MHz.
+BOOST_AUTO_TEST_CASE(the_report_and_summary_carry_the_design_fmax) {
+    Frame f;
+    const g::ImageView l = v::view_of(f.sc.left), r = v::view_of(f.sc.right);
+    const e::ModelRun run = e::run_model("core", f.p, f.roi, l, r, f.cfg);
+    const g::DisparityMap want = g::compute(f.p, l, r, f.roi);
+    for (const double clock : {1.0, 1000.0}) {
+        imap::isa::MachineConfig cfg = f.cfg;
+        cfg.clock_mhz = clock;
+        const nlohmann::json fmax = e::fmax_json(cfg);
+        BOOST_REQUIRE(fmax.is_object());  // this build has the RTL and the figures
+        const nlohmann::json j = e::run_report(run, e::compare_maps(run.result.map, want), f.p,
+                                               f.roi, cfg, 1.5, e::area_json(cfg), fmax);
+        const nlohmann::json& d = j.at("design_fmax");
+        BOOST_TEST(d.at("mhz").get<double>() > 1.0);
+        BOOST_TEST(d.at("clock_mhz").get<double>() == clock);
+        BOOST_TEST(d.at("clock_above").get<bool>() == (clock > 500));
+        BOOST_TEST(d.at("technology").get<std::string>().rfind("iCE40", 0) == 0u);
+        const std::vector<std::string> lines = e::rtl_area_lines(clock);
+        BOOST_REQUIRE_EQUAL(lines.size(), 2u);
+        BOOST_TEST(lines[1] == "  RTL " + d.at("text").get<std::string>());
+        BOOST_TEST(lines[1].find(clock > 500 ? "clock is above it" : "clock is within it") !=
+                       std::string::npos,
+                   lines[1]);
+    }
+}

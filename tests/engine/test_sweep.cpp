@@ -395,3 +395,50 @@ BOOST_AUTO_TEST_CASE(y_metric_column_summary_and_plot) {
     BOOST_TEST(sw::header_lines(p, nullptr).back() == h_time);
     BOOST_TEST(sw::row_line(p, p.rows[0]) == r_time);
 }
+
+// The design's Fmax (docs/rtl.md, "Place and route (iCE40)"): a child's
+// report carries "design_fmax"; a point whose clock is above it is marked in
+// the table and counted in the summary, a point below it is not; the run
+// folder keeps it.
+BOOST_AUTO_TEST_CASE(a_clock_above_the_design_fmax_is_marked) {
+    sw::Plan p;
+    p.swept = {sw::make_axis("clock_mhz", "--clock-mhz", "20,80")};
+    p.rows = {ran_row({"20"}, 2.0, {{"forward", 1000}}), ran_row({"80"}, 0.5, {{"forward", 1000}})};
+    for (sw::Row& row : p.rows) {
+        const double clock = std::stod(row.values[0]);
+        const nlohmann::json rep = {{"cycles", 80000},
+                                    {"modeled_ms", 80000 / (clock * 1e3)},
+                                    {"phases", {{"forward", 80000}}},
+                                    {"design_fmax",
+                                     {{"mhz", 45.5},
+                                      {"technology", "iCE40 HX8K"},
+                                      {"clock_mhz", clock},
+                                      {"clock_above", clock > 45.5}}}};
+        BOOST_REQUIRE(eng::read_report(rep, *row.run));
+        BOOST_REQUIRE(row.run->design_fmax);
+    }
+    BOOST_TEST(!sw::clock_above_fmax(p.rows[0]));
+    BOOST_TEST(sw::clock_above_fmax(p.rows[1]));
+    const std::string below = sw::row_line(p, p.rows[0]);
+    const std::string above = sw::row_line(p, p.rows[1]);
+    BOOST_TEST(below.find("Fmax") == std::string::npos, below);
+    BOOST_TEST(above.find("ok, bit-exact [clock > design Fmax 45.5 MHz]") != std::string::npos,
+               above);
+    sw::Result r;
+    r.total = 2;
+    r.rows = p.rows;
+    const auto sum = sw::summary_lines(p, r);
+    BOOST_REQUIRE_GE(sum.size(), 2u);
+    BOOST_TEST(sum[1].find("1 point with the clock above the design's Fmax (45.5 MHz on iCE40 "
+                           "HX8K") != std::string::npos,
+               sum[1]);
+    // the run folder's copy of a result keeps the mark
+    const eng::RunResult back = eng::result_from_json(eng::to_json(*p.rows[1].run));
+    BOOST_REQUIRE(back.design_fmax);
+    BOOST_TEST(back.design_fmax->clock_above);
+    BOOST_TEST(back.design_fmax->mhz == 45.5);
+    // no design_fmax in the report: nothing marked
+    r.rows[1].run->design_fmax.reset();
+    BOOST_TEST(!sw::clock_above_fmax(r.rows[1]));
+    BOOST_TEST(sw::summary_lines(p, r).size() == 1u);
+}

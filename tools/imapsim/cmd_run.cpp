@@ -166,7 +166,8 @@ Subcommand register_run(CLI::App& app) {
                                 o->emit_defines.c_str());
                 }
                 if (!o->report.empty()) {
-                    nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg));
+                    nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg),
+                                                  fmax_json(cfg));
                     j["source"] = source;
                     if (!truth.json.is_null()) j["ground_truth"] = truth.json;
                     v::write_text_atomic(o->report, j.dump(2) + "\n");

@@ -47,6 +47,7 @@ using imap::engine::check_wave_outputs;
 using imap::engine::compare_maps;
 using imap::engine::Comparison;
 using imap::engine::divergence_report;
+using imap::engine::fmax_json;
 using imap::engine::model_names;
 using imap::engine::ModelRun;
 using imap::engine::print_rtl_area;

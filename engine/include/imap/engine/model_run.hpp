@@ -76,10 +76,12 @@ nlohmann::json divergence_report(const ModelRun& run, const golden::Params& p,
                                  const golden::Roi& roi, const isa::MachineConfig& cfg);
 
 // The report of a finished run (docs/cli.md: `imapsim run --report`);
-// `area` is the configuration's synthesized area ("area" key), null for none.
+// `area` is the configuration's synthesized area ("area" key), `design_fmax`
+// the design's Fmax against the clock ("design_fmax" key), null for none.
 nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const golden::Params& p,
                           const golden::Roi& roi, const isa::MachineConfig& cfg, double golden_ms,
-                          const nlohmann::json& area = nullptr);
+                          const nlohmann::json& area = nullptr,
+                          const nlohmann::json& design_fmax = nullptr);
 
 // The emitted firmware source of a run (`imapsim run --emit-defines`): the
 // planner's constants and per-column plan macros ending with the .include of

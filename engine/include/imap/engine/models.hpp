@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "imap/engine/model_run.hpp"
 #include "imap/isa/config.hpp"
@@ -22,11 +23,19 @@ std::string model_names();
 // Error (exit 2) naming model_names() when `m` is not one of them.
 void check_model_name(const std::string& m);
 // The RTL design's synthesized area (cells per PE and per CP), one line on
-// stdout; nothing when the build has no RTL.
-void print_rtl_area();
+// stdout, and its Fmax from place and route against clock_mhz, another
+// (docs/rtl.md, "Place and route (iCE40)"); nothing when the build has no
+// RTL.
+void print_rtl_area(double clock_mhz);
+// Those lines (none without RTL).
+std::vector<std::string> rtl_area_lines(double clock_mhz);
 // The synthesized area of configuration `cfg` as the run report's "area"
 // object; null without RTL or synthesis figures.
 nlohmann::json area_json(const isa::MachineConfig& cfg);
+// The design's Fmax against cfg.clock_mhz as the run report's
+// "design_fmax" object {mhz, technology, configuration, clock_mhz,
+// clock_above, text}; null without RTL or place-and-route figures.
+nlohmann::json fmax_json(const isa::MachineConfig& cfg);
 
 // --model rtl / lockstep options (docs/rtl.md).
 struct RtlOptions {

@@ -48,6 +48,16 @@ struct Area {
     uint64_t memory_bits = 0;
 };
 
+// The design's Fmax from place and route against the run's clock, when the
+// report has it (report key "design_fmax"; docs/rtl.md, "Place and route
+// (iCE40)").
+struct DesignFmax {
+    double mhz = 0;
+    double clock_mhz = 0;
+    bool clock_above = false;  // clock_mhz > mhz
+    std::string technology;    // "iCE40 HX8K"
+};
+
 // Energy of the frame, when the report has it (report key "energy",
 // docs/energy.md): totals, the share of each event class (uJ) and the event
 // counts behind them.
@@ -75,6 +85,7 @@ struct RunResult {
     double modeled_ms = 0;
     std::vector<std::pair<std::string, uint64_t>> phases;  // in program order
     std::optional<Area> area;
+    std::optional<DesignFmax> design_fmax;
     double pe_utilisation = 0;
     // The machine's bound of each phase that has one, and of the frame
     // (report keys "bounds", "bound_cycles"; docs/firmware.md section 11).

@@ -111,6 +111,10 @@ std::optional<Metric> metric_from_name(const std::string& s);  // nullopt if unk
 // average power over the frame (mW), energy x delay (uJ x ms) or area
 // (cells); NaN when the row has none (not run, no energy or area reported).
 double metric_value(const Row& r, Metric m);
+// Whether the row ran at a clock above the design's Fmax (its report's
+// "design_fmax"; docs/rtl.md, "Place and route (iCE40)"): the table marks
+// it and the summary counts it.
+bool clock_above_fmax(const Row& r);
 
 // Every point planned: the rows that are answers already, the jobs to run.
 struct Plan {

@@ -1,0 +1,90 @@
+// The design's place-and-route figures (imap/rtl/pnr.hpp): parses the JSON
+// of scripts/rtl-pnr.sh embedded by rtl_model/synth/embed_pnr.cmake, and
+// states the Fmax against a clock.
+#include "imap/rtl/pnr.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace imap::rtl {
+
+namespace detail {
+const char* pnr_ice40_json();
+}  // namespace detail
+
+namespace {
+uint64_t positive(const nlohmann::json& o, const char* key, const char* where) {
+    if (!o.contains(key) || !o[key].is_number_unsigned() || o[key].get<uint64_t>() == 0)
+        throw std::runtime_error(std::string("place-and-route figures: ") + where + "." + key +
+                                 " missing or not a positive integer");
+    return o[key].get<uint64_t>();
+}
+PnrUnit unit(const nlohmann::json& o, const char* where) {
+    PnrUnit u;
+    u.lut4 = positive(o, "lut4", where);
+    u.ff = positive(o, "ff", where);
+    u.bram = o.value("bram", uint64_t{0});
+    return u;
+}
+}  // namespace
+
+PnrFigures parse_pnr(const std::string& text) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(std::string("place-and-route figures: not JSON: ") + e.what());
+    }
+    PnrFigures f;
+    try {
+        f.technology = j.at("technology").get<std::string>();
+        f.package = j.at("package").get<std::string>();
+        f.tool = j.at("tools").at("nextpnr").get<std::string>();
+        const nlohmann::json& c = j.at("configuration");
+        f.configuration = c.at("text").get<std::string>();
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(std::string("place-and-route figures: ") + e.what());
+    }
+    if (f.technology.empty()) throw std::runtime_error("place-and-route figures: no technology");
+    const nlohmann::json& pe = j.contains("pe") ? j["pe"] : nlohmann::json::object();
+    f.pe = unit(pe, "pe");
+    f.logic_cells = positive(pe, "logic_cells", "pe");
+    f.logic_cells_available = positive(pe, "logic_cells_available", "pe");
+    if (!pe.contains("fmax_mhz") || !pe["fmax_mhz"].is_number() ||
+        !(pe["fmax_mhz"].get<double>() > 0))
+        throw std::runtime_error("place-and-route figures: pe.fmax_mhz missing or not positive");
+    f.fmax_mhz = pe["fmax_mhz"].get<double>();
+    const nlohmann::json& cp = j.contains("cp") ? j["cp"] : nlohmann::json::object();
+    f.cp = unit(cp, "cp");
+    f.cp_fits = cp.value("fits", false);
+    f.pe1k = unit(j.contains("pe_1k") ? j["pe_1k"] : nlohmann::json::object(), "pe_1k");
+    f.available = true;
+    return f;
+}
+
+const PnrFigures& place_and_route() {
+    static const PnrFigures f = [] {
+        const char* t = detail::pnr_ice40_json();
+        return *t ? parse_pnr(t) : PnrFigures{};
+    }();
+    return f;
+}
+
+bool above_fmax(const PnrFigures& f, double clock_mhz) {
+    return f.available && clock_mhz > f.fmax_mhz;
+}
+
+std::string fmax_text(const PnrFigures& f, double clock_mhz) {
+    if (!f.available) return "";
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "design Fmax: %s%.2f MHz on %s (nextpnr-ice40, %s, docs/rtl.md); the %g MHz "
+                  "clock is %s it",
+                  f.cp_fits ? "" : "at most ", f.fmax_mhz, f.technology.c_str(),
+                  f.configuration.c_str(), clock_mhz,
+                  above_fmax(f, clock_mhz) ? "above" : "within");
+    return b;
+}
+
+}  // namespace imap::rtl
