@@ -76,105 +76,105 @@ Subcommand register_run(CLI::App& app) {
     add_rtl_flags(sub, o->rtl);
     add_wave_flags(sub, o->waves);
 
-    return {sub, [o]() {
-                g::Roi roi;
-                bool has_roi = false;
-                g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
-                const isa::MachineConfig cfg = parse_machine_flags(o->machine);
-                check_model_name(o->model);
-                // Every output path, before any work (docs/errors.md).
-                check_output_file("--out", o->out, true);
-                check_output_file("--out-color", o->out_color, true);
-                check_output_file("--report", o->report, false);
-                check_output_file("--emit-program", o->emit_program, false);
-                check_output_file("--emit-defines", o->emit_defines, false);
-                check_wave_outputs(o->waves, o->model);
-                imap::engine::check_distinct_outputs({{"--out", o->out},
-                                                      {"--out-color", o->out_color},
-                                                      {"--report", o->report},
-                                                      {"--emit-program", o->emit_program},
-                                                      {"--emit-defines", o->emit_defines},
-                                                      {"--vcd", o->waves.vcd}});
+    return {
+        sub, [o]() {
+            g::Roi roi;
+            bool has_roi = false;
+            g::Params p = parse_algo_flags(o->algo, &roi, &has_roi);
+            const isa::MachineConfig cfg = parse_machine_flags(o->machine);
+            check_model_name(o->model);
+            // Every output path, before any work (docs/errors.md).
+            check_output_file("--out", o->out, true);
+            check_output_file("--out-color", o->out_color, true);
+            check_output_file("--report", o->report, false);
+            check_output_file("--emit-program", o->emit_program, false);
+            check_output_file("--emit-defines", o->emit_defines, false);
+            check_wave_outputs(o->waves, o->model);
+            imap::engine::check_distinct_outputs({{"--out", o->out},
+                                                  {"--out-color", o->out_color},
+                                                  {"--report", o->report},
+                                                  {"--emit-program", o->emit_program},
+                                                  {"--emit-defines", o->emit_defines},
+                                                  {"--vcd", o->waves.vcd}});
 
-                const run::Input in = run::load_input(
-                    {o->left, o->right, o->scene, o->gt, o->gt_scale, o->seed, o->size,
-                     !o->algo.D.empty()},
-                    &p, &roi, has_roi, [](const std::string& n) { std::fputs(n.c_str(), stderr); });
-                const std::string& source = in.source;
-                const cv::Mat &L = in.L, &R = in.R;
-                const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
+            const run::Input in = run::load_input(
+                {o->left, o->right, o->scene, o->gt, o->gt_scale, o->seed, o->size,
+                 !o->algo.D.empty()},
+                &p, &roi, has_roi, [](const std::string& n) { std::fputs(n.c_str(), stderr); });
+            const std::string& source = in.source;
+            const cv::Mat &L = in.L, &R = in.R;
+            const g::ImageView lv = v::view_of(L), rv = v::view_of(R);
 
-                std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
-                            source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
-                            p.vote ? "on" : "off", g::to_string(p.frame));
-                std::printf(
-                    "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
-                    "model %s\n",
-                    cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
-                std::fflush(stdout);
+            std::printf("imapsim run: %s, ROI %d,%d,%dx%d, D=%d, %s, vote %s, frame %s\n",
+                        source.c_str(), roi.x0, roi.y0, roi.w, roi.h, p.D, g::to_string(p.mode),
+                        p.vote ? "on" : "off", g::to_string(p.frame));
+            std::printf(
+                "  machine: %d PEs at %g MHz, %u B local + %u B external per PE, "
+                "model %s\n",
+                cfg.pes, cfg.clock_mhz, cfg.mem_bytes, cfg.ext_bytes, o->model.c_str());
+            std::fflush(stdout);
 
-                const auto tg = std::chrono::steady_clock::now();
-                const g::DisparityMap want = g::compute(p, lv, rv, roi);
-                const double golden_ms =
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
-                        .count();
+            const auto tg = std::chrono::steady_clock::now();
+            const g::DisparityMap want = g::compute(p, lv, rv, roi);
+            const double golden_ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tg)
+                    .count();
 
-                ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves, &o->rtl);
-                if (!run.divergence.empty()) {
-                    // The lockstep stopped at its first divergence: the report
-                    // says where (written on divergence too), no map is written.
-                    if (!o->report.empty()) {
-                        nlohmann::json j = divergence_report(run, p, roi, cfg);
-                        j["source"] = source;
-                        v::write_text_atomic(o->report, j.dump(2) + "\n");
-                        std::printf("  report -> %s\n", o->report.c_str());
-                    }
-                    std::fflush(stdout);
-                    std::fprintf(stderr, "imapsim: error: %s\n", run.divergence.c_str());
-                    return static_cast<int>(kExitMismatch);
-                }
-                const fw::FrameResult& r = run.result;
-                const Comparison cmp = compare_maps(r.map, want);
-                print_run_summary(run, cmp, cfg, golden_ms);
-                const run::Truth truth = run::score_truth(in, p, roi);
-                for (const std::string& l : truth.lines) std::printf("%s\n", l.c_str());
-                const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
-                                  const_cast<uint8_t*>(r.map.data.data()));
-                if (!o->out.empty()) {
-                    v::write_image_atomic(o->out, out);
-                    std::printf("  disparity map -> %s\n", o->out.c_str());
-                }
-                if (!o->out_color.empty()) {
-                    v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
-                    std::printf("  colour-mapped map -> %s (occluded: white)\n",
-                                o->out_color.c_str());
-                }
-                if (!o->emit_program.empty()) {
-                    try {
-                        isa::save_program(run.program, o->emit_program);
-                    } catch (const std::exception& e) {
-                        throw UserError("--emit-program '" + o->emit_program + "': " + e.what());
-                    }
-                    std::printf("  program (%zu instructions) -> %s\n", run.program.code.size(),
-                                o->emit_program.c_str());
-                }
-                if (!o->emit_defines.empty()) {
-                    v::write_text_atomic(o->emit_defines,
-                                         imap::engine::firmware_source_text(
-                                             run, source, cfg, o->emit_program, o->emit_defines));
-                    std::printf("  firmware source (constants and plan) -> %s\n",
-                                o->emit_defines.c_str());
-                }
+            ModelRun run = run_model(o->model, p, roi, lv, rv, cfg, &o->waves, &o->rtl);
+            if (!run.divergence.empty()) {
+                // The lockstep stopped at its first divergence: the report
+                // says where (written on divergence too), no map is written.
                 if (!o->report.empty()) {
-                    nlohmann::json j = run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg),
-                                                  fmax_json(cfg));
+                    nlohmann::json j = divergence_report(run, p, roi, cfg);
                     j["source"] = source;
-                    if (!truth.json.is_null()) j["ground_truth"] = truth.json;
                     v::write_text_atomic(o->report, j.dump(2) + "\n");
                     std::printf("  report -> %s\n", o->report.c_str());
                 }
-                return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
-            }};
+                std::fflush(stdout);
+                std::fprintf(stderr, "imapsim: error: %s\n", run.divergence.c_str());
+                return static_cast<int>(kExitMismatch);
+            }
+            const fw::FrameResult& r = run.result;
+            const Comparison cmp = compare_maps(r.map, want);
+            print_run_summary(run, cmp, cfg, golden_ms);
+            const run::Truth truth = run::score_truth(in, p, roi);
+            for (const std::string& l : truth.lines) std::printf("%s\n", l.c_str());
+            const cv::Mat out(r.map.height, r.map.width, CV_8UC1,
+                              const_cast<uint8_t*>(r.map.data.data()));
+            if (!o->out.empty()) {
+                v::write_image_atomic(o->out, out);
+                std::printf("  disparity map -> %s\n", o->out.c_str());
+            }
+            if (!o->out_color.empty()) {
+                v::write_image_atomic(o->out_color, v::colorize_disparity(out, p.D));
+                std::printf("  colour-mapped map -> %s (occluded: white)\n", o->out_color.c_str());
+            }
+            if (!o->emit_program.empty()) {
+                try {
+                    isa::save_program(run.program, o->emit_program);
+                } catch (const std::exception& e) {
+                    throw UserError("--emit-program '" + o->emit_program + "': " + e.what());
+                }
+                std::printf("  program (%zu instructions) -> %s\n", run.program.code.size(),
+                            o->emit_program.c_str());
+            }
+            if (!o->emit_defines.empty()) {
+                v::write_text_atomic(o->emit_defines,
+                                     imap::engine::firmware_source_text(
+                                         run, source, cfg, o->emit_program, o->emit_defines));
+                std::printf("  firmware source (constants and plan) -> %s\n",
+                            o->emit_defines.c_str());
+            }
+            if (!o->report.empty()) {
+                nlohmann::json j =
+                    run_report(run, cmp, p, roi, cfg, golden_ms, area_json(cfg), fmax_json(cfg));
+                j["source"] = source;
+                if (!truth.json.is_null()) j["ground_truth"] = truth.json;
+                v::write_text_atomic(o->report, j.dump(2) + "\n");
+                std::printf("  report -> %s\n", o->report.c_str());
+            }
+            return cmp.equal ? static_cast<int>(kExitOk) : static_cast<int>(kExitMismatch);
+        }};
 }
 
 }  // namespace imapsim
