@@ -245,11 +245,7 @@ std::vector<std::string> built_configurations() {
 
 namespace {
 const detail::ConfigInfo* find(const isa::MachineConfig& cfg, int trace, bool mut) {
-    for (const detail::ConfigInfo& c : detail::configs())
-        if (c.pes == cfg.pes && c.mem_bytes == cfg.mem_bytes && c.ext_bytes == cfg.ext_bytes &&
-            c.trace == trace && (c.mutants != 0) == mut)
-            return &c;
-    return nullptr;
+    return detail::find_config(cfg.pes, cfg.mem_bytes, cfg.ext_bytes, trace, mut);
 }
 
 // The configurations (any variant: 0; traced in that format: 1 VCD, 2 FST).

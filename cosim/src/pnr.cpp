@@ -1,17 +1,20 @@
 // The design's place-and-route figures (imap/rtl/pnr.hpp): parses the JSON
-// of scripts/rtl-pnr.sh embedded by rtl_model/synth/embed_pnr.cmake, and
+// of scripts/rtl-pnr.sh embedded by cmake/embed_files.cmake, and
 // states the Fmax against a clock.
 #include "imap/rtl/pnr.hpp"
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace imap::rtl {
 
-namespace detail {
-const char* pnr_ice40_json();
-}  // namespace detail
+namespace detail::pnr {
+// rtl_model/synth/pnr_ice40.json (rtl_model/CMakeLists.txt embeds it)
+const std::vector<std::pair<const char*, const char*>>& embedded_sources();
+}  // namespace detail::pnr
 
 namespace {
 uint64_t positive(const nlohmann::json& o, const char* key, const char* where) {
@@ -65,7 +68,8 @@ PnrFigures parse_pnr(const std::string& text) {
 
 const PnrFigures& place_and_route() {
     static const PnrFigures f = [] {
-        const char* t = detail::pnr_ice40_json();
+        const auto& files = detail::pnr::embedded_sources();
+        const char* t = files.empty() ? "" : files.front().second;
         return *t ? parse_pnr(t) : PnrFigures{};
     }();
     return f;

@@ -424,8 +424,7 @@ void check_config(const CacheConfig& c) {
 }  // namespace
 
 std::string CacheConfig::name() const {
-    return "p" + std::to_string(pes) + "_m" + std::to_string(mem_bytes) + "_x" +
-           std::to_string(ext_bytes) + "_" + variant_name(trace);
+    return detail::config_stem(pes, mem_bytes, ext_bytes) + "_" + variant_name(trace);
 }
 
 std::string cache_dir() {
@@ -479,6 +478,7 @@ std::vector<CacheEntry> cache_entries() {
     const std::string root = cache_dir();
     std::error_code ec;
     if (root == "off" || root.empty() || !fs::is_directory(root, ec)) return v;
+    std::map<std::string, std::string> keys;  // configuration name -> expected key
     for (const fs::directory_entry& d : fs::directory_iterator(root, ec)) {
         const std::string fname = d.path().filename().string();
         if (fname.empty() || fname[0] != 'p' || !d.is_directory(ec)) continue;
@@ -504,7 +504,9 @@ std::vector<CacheEntry> cache_entries() {
         e.built = get("built");
         e.bytes = static_cast<uint64_t>(fs::file_size(e.dir + "/model.so", ec));
         if (ec) e.bytes = 0;
-        const std::string expect = key_of(e.cfg);
+        auto [known, fresh] = keys.try_emplace(e.cfg.name());
+        if (fresh) known->second = key_of(e.cfg);  // hashes every source: once per configuration
+        const std::string& expect = known->second;
         const std::string why = fname == entry_name(e.cfg, e.key) || e.key.size() < 16
                                     ? entry_problem(e.dir, expect)
                                     : "folder name does not match its record";
@@ -554,11 +556,23 @@ std::deque<ConfigInfo>& configs() {
     return v;
 }
 
-const ConfigInfo& cache_load(const CacheConfig& c, std::ostream& log) {
+const ConfigInfo* find_config(int pes, uint32_t mem_bytes, uint32_t ext_bytes, int trace,
+                              bool mutants) {
     for (const ConfigInfo& k : configs())
-        if (k.pes == c.pes && k.mem_bytes == c.mem_bytes && k.ext_bytes == c.ext_bytes &&
-            k.trace == c.trace && !k.mutants)
-            return k;
+        if (k.pes == pes && k.mem_bytes == mem_bytes && k.ext_bytes == ext_bytes &&
+            k.trace == trace && (k.mutants != 0) == mutants)
+            return &k;
+    return nullptr;
+}
+
+std::string config_stem(int pes, uint32_t mem_bytes, uint32_t ext_bytes) {
+    return "p" + std::to_string(pes) + "_m" + std::to_string(mem_bytes) + "_x" +
+           std::to_string(ext_bytes);
+}
+
+const ConfigInfo& cache_load(const CacheConfig& c, std::ostream& log) {
+    if (const ConfigInfo* k = find_config(c.pes, c.mem_bytes, c.ext_bytes, c.trace, false))
+        return *k;
     const CacheBuild b = cache_build(c, log);
     const std::string lib = b.dir + "/model.so";
     void* h = ::dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -579,8 +593,7 @@ const ConfigInfo& cache_load(const CacheConfig& c, std::ostream& log) {
     dpi(&host_dpi_table());
     // (never unloaded: the model's SystemC objects live until the process ends)
     static std::deque<std::string> names;
-    names.push_back("p" + std::to_string(c.pes) + "_m" + std::to_string(c.mem_bytes) + "_x" +
-                    std::to_string(c.ext_bytes));
+    names.push_back(config_stem(c.pes, c.mem_bytes, c.ext_bytes));
     configs().push_back(
         ConfigInfo{names.back().c_str(), c.pes, c.mem_bytes, c.ext_bytes, c.trace, 0, make});
     return configs().back();
