@@ -11,6 +11,9 @@ hit it), so a figure is the source's, not an instance's. Waivers
 (WAIVERS.txt) take points out of the totals, each with its reason:
     FILE:LINE[-LINE] KIND REASON...         KIND: line, branch, toggle or *
     FILE signal=NAME toggle REASON...       every toggle point of a signal
+    FILE signal=NAME[HI:LO] toggle REASON.. the toggle points of bits HI..LO
+A waiver that matches no point, or that waives a point some run did hit
+(its reason claims the point cannot be reached), is reported.
 Targets (issue: line >= 95%, toggle >= 85%) are printed beside the totals.
 """
 import collections
@@ -65,7 +68,11 @@ def parse_waivers(path):
                 sub = reason.split(None, 1)
                 if len(sub) < 2 or sub[0] != "toggle":
                     sys.exit(f"{path}:{n}: a signal waiver is 'FILE signal=NAME toggle REASON'")
-                rules.append((where, "toggle", None, None, kind[7:], sub[1], n))
+                m = re.match(r"^([A-Za-z_][\w.$]*)(?:\[(\d+):(\d+)\])?$", kind[7:])
+                if not m or (m.group(2) and int(m.group(2)) < int(m.group(3))):
+                    sys.exit(f"{path}:{n}: a signal is NAME or NAME[HI:LO] (HI >= LO)")
+                bits = (int(m.group(3)), int(m.group(2))) if m.group(2) else None
+                rules.append((where, "toggle", None, bits, m.group(1), sub[1], n))
                 continue
             m = re.match(r"^(.+):(\d+)(?:-(\d+))?$", where)
             if not m or kind not in KINDS + ("*",):
@@ -82,7 +89,12 @@ def waived(key, rules):
         if rfile != file or (rkind != "*" and rkind != kind):
             continue
         if signal is not None:
-            if comment.split("[")[0] == signal or comment.split(":")[0] == signal:
+            if comment.split("[")[0] != signal and comment.split(":")[0] != signal:
+                continue
+            if hi is None:  # the whole signal
+                return n
+            bit = re.search(r"\[(\d+)\]$", comment)  # the point's bit (the last index)
+            if bit and hi[0] <= int(bit.group(1)) <= hi[1]:
                 return n
         elif lo <= line <= hi:
             return n
@@ -94,6 +106,7 @@ def main():
     points = parse(merged)
     rules = parse_waivers(waivers)
     used = set()
+    hit_waived = collections.Counter()  # waiver line -> points it waives that a run hit
     tot = collections.defaultdict(lambda: [0, 0, 0])  # (file, kind) -> covered, total, waived
     miss = []
     for key, count in sorted(points.items()):
@@ -102,6 +115,8 @@ def main():
         if w:
             used.add(w)
             t[2] += 1
+            if count > 0:
+                hit_waived[w] += 1
             continue
         t[1] += 1
         if count > 0:
@@ -111,13 +126,13 @@ def main():
     files = sorted({f for f, _ in tot})
     lines = ["RTL code coverage of rtl_model/hdl (points of every instance counted once;"
              " waived points left out)",
-             f"{'file':<18}" + "".join(f"{k:>24}" for k in KINDS)]
+             f"{'file':<18}" + "".join(f"{k:>30}" for k in KINDS)]
 
     def cell(c, t, w):
         if t == 0:
-            return f"{'-':>24}"
+            return f"{'-':>30}"
         s = f"{c}/{t} {100.0 * c / t:5.1f}%" + (f" ({w} waived)" if w else "")
-        return f"{s:>24}"
+        return f"{s:>30}"
 
     grand = collections.defaultdict(lambda: [0, 0, 0])
     for f in files:
@@ -140,6 +155,9 @@ def main():
     unused = [r for r in rules if r[6] not in used]
     for r in unused:
         lines.append(f"warning: waiver at line {r[6]} matches no point ({r[0]} {r[1]})")
+    for n, k in sorted(hit_waived.items()):
+        lines.append(f"warning: waiver at line {n} waives {k} point(s) that were hit "
+                     f"(its reason does not hold)")
     with open(summary, "w") as f:
         f.write("\n".join(lines) + "\n")
     with open(uncovered, "w") as f:

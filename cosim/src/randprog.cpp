@@ -66,11 +66,97 @@ void Gen::fault_ending() {
     }
 }
 
+void Gen::strap_sweep() {
+    isa::MachineConfig& cfg = out_.cfg;
+    // consecutive seeds take consecutive values of each list: every bit that
+    // differs between neighbours toggles (the 20-bit patterns cover the cost
+    // range 0..1000000; the short lists the design's limits, kHdl*)
+    const uint64_t s = out_.seed;
+    auto pick = [s](std::initializer_list<uint64_t> v) {
+        return *(v.begin() + static_cast<std::ptrdiff_t>(s % v.size()));
+    };
+    const uint32_t wide = static_cast<uint32_t>(pick({0x55555, 0xAAAAA}));
+    isa::CostTable& c = cfg.costs;
+    for (uint32_t* f :
+         {&c.alu, &c.mem, &c.indirect_extra, &c.ring_hop, &c.mask, &c.status, &c.cp,
+          &c.branch_taken, &c.video_line, &c.xfer_setup, &c.ext_beat, &c.minmax_extra})
+        *f = wide;
+    c.shift_bits = static_cast<uint32_t>(pick({5, 2, 7}));
+    c.ext_bytes_per_cycle = static_cast<uint32_t>(
+        std::min<uint64_t>(pick({5, 2, 8}), static_cast<uint64_t>(detail::kHdlXrows)));
+    cfg.pe_regs = static_cast<int>(pick({13, 10, 16}));
+    cfg.mask_depth = static_cast<int>(pick({5, 3, 8}));
+    cfg.call_depth = static_cast<int>(pick({5, 10, 16}));
+    cfg.watchdog_cycles = pick({0x1555555555555555ull, 0x2AAAAAAAAAAAAAAAull});
+    NR_ = cfg.pe_regs;
+    out_.ending = "halt";
+    const uint32_t lo = static_cast<uint32_t>(NR_ - 2);
+    // one instruction of every cost class (then a call, below)
+    emit(enc(PHASE, 0, 0, 0, static_cast<uint32_t>(pick({0x55, 0xAA, 0xFF}))));
+    emit(enc(CLI, 1, 0, 0, cval()));           // cp
+    emit(enc(ADD, 1, 2, 3));                   // alu
+    emit(enc(0x47, 4, 1, 2));                  // min: minmax
+    emit(enc(SHLI, 5, 1, 0, 3));               // shift
+    emit(enc(ST, 1, 0, 128, 5));               // mem
+    emit(enc(LD, 6, 0, 128, 5));               // mem
+    emit(enc(PIDX, lo));                       // (alu)
+    emit(enc(LDX, 7, lo, 0, (1u << 29) | 9));  // mem + indirect_extra
+    emit(enc(RXL, 2, 1, 0, 1));                // one ring hop
+    emit(enc(CEQI, 0, 1, 0, imm8()));          // (alu)
+    emit(enc(MIF));                            // mask
+    emit(enc(ADD, 3, 3, 3));
+    emit(enc(MELSE));
+    emit(enc(MEND));
+    emit(enc(RANY, kStat));  // status
+    const size_t jmp = here();
+    emit(enc(JMP));  // cp + branch_taken
+    emit(enc(NOP));  // (jumped over)
+    patch(jmp, static_cast<uint32_t>(here()));
+    set_base(0, 1);  // video line 1, from x = 0
+    set_base(1, 0);
+    emit(enc(VIN, 0, 0 | 1 << 4, 128, 16));  // video_line
+    if (o_.ext_bytes > 0) {
+        set_base(kBase0, 20);  // local row 20, external byte 0, 2 bytes
+        set_base(kBase0 + 1, 0);
+        set_base(kBase0 + 2, 2);
+        emit(enc(XLD, kBase0 + 2, kBase0 + 1, kBase0, 0));  // xfer_setup + beats
+    }
+    // the subroutine at the end of a program whose length flips every bit
+    // of the instruction memory's address (65536 words, kHdlImemWords): the
+    // call and return move the PC across it
+    const size_t call = here();
+    emit(enc(CALL));
+    emit(enc(HALT));
+    const size_t words = static_cast<size_t>(
+        std::min<uint64_t>(pick({0x5555, 0xAAAA, 0x10000}), detail::kHdlImemWords));
+    while (here() + 2 < words) emit(enc(NOP));
+    patch(call, static_cast<uint32_t>(here()));
+    emit(enc(ADD, 8, 1, 4));
+    emit(enc(RET));
+    out_.prog.code = code_;
+    out_.prog.phases.clear();
+    for (int i = 0; i < 256; ++i) out_.prog.phases.push_back("p" + std::to_string(i));
+}
+
 void Gen::run() {
     isa::MachineConfig& cfg = out_.cfg;
     cfg.pes = o_.pes;
     cfg.mem_bytes = o_.mem_bytes;
     cfg.ext_bytes = o_.ext_bytes;
+    if (o_.strap_sweep) {
+        auto img = [&](isa::ImageVideoPort::Image& im) {
+            im.width = o_.pes;
+            im.height = 4;
+            im.pixels.resize(static_cast<size_t>(o_.pes) * 4);
+            for (uint8_t& p : im.pixels) p = static_cast<uint8_t>(rng_());
+        };
+        img(out_.left);
+        img(out_.right);
+        out_.out_w = o_.pes;
+        out_.out_h = 4;
+        strap_sweep();
+        return;
+    }
     if (o_.vary_costs && chance(75)) {
         isa::CostTable& c = cfg.costs;
         c.alu = 1 + static_cast<uint32_t>(u(3));

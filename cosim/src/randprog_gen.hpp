@@ -167,6 +167,8 @@ class Gen {
     void set_base(int c, uint32_t v) { emit(enc(CLI, static_cast<uint32_t>(c), 0, 0, v)); }
     // The program's ending (randprog.cpp).
     void fault_ending();
+    // GenOptions::strap_sweep (randprog.cpp).
+    void strap_sweep();
 };
 
 }  // namespace imap::rtl::randgen

@@ -26,6 +26,14 @@ struct GenOptions {
     int blocks = 40;         // top-level blocks per program
     bool vary_costs = true;  // a random cost table per program (some keep the defaults)
     int fault_percent = 20;  // programs that end in a deliberate machine fault (one of ten kinds)
+    // The strap sweep instead of random programs: each program runs one
+    // instruction of every cost class (and a phase, a call) under straps
+    // (cost table, pe_regs, mask_depth, call_depth, watchdog; the program's
+    // length and the phase id) drawn from
+    // two or three complementary values by the seed, so that consecutive
+    // seeds flip every bit a strap can hold on this design; every cost near
+    // the top of its range (docs/rtl.md, "Code coverage").
+    bool strap_sweep = false;
 };
 
 struct RandomProgram {
