@@ -94,6 +94,11 @@ BOOST_AUTO_TEST_CASE(mask_stack) {
 }
 BOOST_AUTO_TEST_CASE(return_stack) {
     same_fault("ret\nhalt\n");
+    // overflow: a subroutine that calls itself, call_depth 3 (found by the
+    // design's code coverage: the overflow arm was never taken)
+    isa::MachineConfig cfg = rtl_config(8);
+    cfg.call_depth = 3;
+    same_fault("call s\n halt\ns: add r1, r1, r2\n call s\n ret\n", cfg);
 }
 BOOST_AUTO_TEST_CASE(param_block) {
     same_fault("cli c2, #200\n cld c1, [c2 + 56]\n halt\n");
@@ -103,6 +108,12 @@ BOOST_AUTO_TEST_CASE(transfers) {
     same_fault("cli c1, #30\n cli c2, #0\n xst [#1000], ext[c2], c1\n halt\n");
     same_fault("cli c1, #30\n cli c2, #65530\n xld [#0], ext[c2], c1\n halt\n");
     same_fault("cli c1, #30\n cli c2, #65530\n xld [#1000], ext[c2], c1\n halt\n");
+}
+// a video row outside local memory (1024 bytes): refused in decode (found by
+// the design's code coverage)
+BOOST_AUTO_TEST_CASE(video_row) {
+    same_fault("cli c1, #0\n vin #0, [#1100], c1, c1\n halt\n");
+    same_fault("cli c1, #0\n cli c2, #1020\n vout #1, [c2 + 4], c1, c1\n halt\n");
 }
 BOOST_AUTO_TEST_CASE(video_port_missing) {
     same_fault("cli c1, #0\n vin #0, [#0], c1, c1\n halt\n");
