@@ -50,6 +50,11 @@ def parse(path):
     return points
 
 
+# One waiver: a line range (lo..hi) of FILE, or a signal with an optional bit
+# range bits = (LO, HI); n is its line in the waiver file.
+Rule = collections.namedtuple("Rule", "file kind lo hi signal bits reason n")
+
+
 def parse_waivers(path):
     rules = []
     if not os.path.exists(path):
@@ -72,32 +77,32 @@ def parse_waivers(path):
                 if not m or (m.group(2) and int(m.group(2)) < int(m.group(3))):
                     sys.exit(f"{path}:{n}: a signal is NAME or NAME[HI:LO] (HI >= LO)")
                 bits = (int(m.group(3)), int(m.group(2))) if m.group(2) else None
-                rules.append((where, "toggle", None, bits, m.group(1), sub[1], n))
+                rules.append(Rule(where, "toggle", None, None, m.group(1), bits, sub[1], n))
                 continue
             m = re.match(r"^(.+):(\d+)(?:-(\d+))?$", where)
             if not m or kind not in KINDS + ("*",):
                 sys.exit(f"{path}:{n}: expected FILE:LINE[-LINE] line|branch|toggle|* REASON")
             lo = int(m.group(2))
             hi = int(m.group(3) or lo)
-            rules.append((m.group(1), kind, lo, hi, None, reason, n))
+            rules.append(Rule(m.group(1), kind, lo, hi, None, None, reason, n))
     return rules
 
 
 def waived(key, rules):
     file, kind, line, _, comment = key
-    for rfile, rkind, lo, hi, signal, _, n in rules:
-        if rfile != file or (rkind != "*" and rkind != kind):
+    for r in rules:
+        if r.file != file or (r.kind != "*" and r.kind != kind):
             continue
-        if signal is not None:
-            if comment.split("[")[0] != signal and comment.split(":")[0] != signal:
+        if r.signal is not None:
+            if comment.split("[")[0] != r.signal and comment.split(":")[0] != r.signal:
                 continue
-            if hi is None:  # the whole signal
-                return n
+            if r.bits is None:  # the whole signal
+                return r.n
             bit = re.search(r"\[(\d+)\]$", comment)  # the point's bit (the last index)
-            if bit and hi[0] <= int(bit.group(1)) <= hi[1]:
-                return n
-        elif lo <= line <= hi:
-            return n
+            if bit and r.bits[0] <= int(bit.group(1)) <= r.bits[1]:
+                return r.n
+        elif r.lo <= line <= r.hi:
+            return r.n
     return 0
 
 
@@ -152,9 +157,9 @@ def main():
         pct = 100.0 * c / t if t else 0.0
         lines.append(f"{k}: {pct:.1f}% (target >= {target:.0f}%: "
                      f"{'met' if pct >= target else 'NOT met'})")
-    unused = [r for r in rules if r[6] not in used]
+    unused = [r for r in rules if r.n not in used]
     for r in unused:
-        lines.append(f"warning: waiver at line {r[6]} matches no point ({r[0]} {r[1]})")
+        lines.append(f"warning: waiver at line {r.n} matches no point ({r.file} {r.kind})")
     for n, k in sorted(hit_waived.items()):
         lines.append(f"warning: waiver at line {n} waives {k} point(s) that were hit "
                      f"(its reason does not hold)")

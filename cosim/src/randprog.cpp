@@ -143,15 +143,16 @@ void Gen::run() {
     cfg.pes = o_.pes;
     cfg.mem_bytes = o_.mem_bytes;
     cfg.ext_bytes = o_.ext_bytes;
+    // images for the video port
+    auto img = [&](isa::ImageVideoPort::Image& im, int w, int h) {
+        im.width = w;
+        im.height = h;
+        im.pixels.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
+        for (uint8_t& p : im.pixels) p = static_cast<uint8_t>(rng_());
+    };
     if (o_.strap_sweep) {
-        auto img = [&](isa::ImageVideoPort::Image& im) {
-            im.width = o_.pes;
-            im.height = 4;
-            im.pixels.resize(static_cast<size_t>(o_.pes) * 4);
-            for (uint8_t& p : im.pixels) p = static_cast<uint8_t>(rng_());
-        };
-        img(out_.left);
-        img(out_.right);
+        img(out_.left, o_.pes, 4);
+        img(out_.right, o_.pes, 4);
         out_.out_w = o_.pes;
         out_.out_h = 4;
         strap_sweep();
@@ -187,13 +188,6 @@ void Gen::run() {
     }
     if (chance(20)) cfg.pe_regs = 8;
     NR_ = cfg.pe_regs;
-    // images for the video port
-    auto img = [&](isa::ImageVideoPort::Image& im, int w, int h) {
-        im.width = w;
-        im.height = h;
-        im.pixels.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
-        for (uint8_t& p : im.pixels) p = static_cast<uint8_t>(rng_());
-    };
     const int W = o_.pes + static_cast<int>(u(static_cast<uint64_t>(o_.pes))), H = 4;
     img(out_.left, W, H);
     img(out_.right, W, H);
