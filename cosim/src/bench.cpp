@@ -125,7 +125,8 @@ void Bench::drive_straps(Ports& p, const Job& j) {
 }
 
 void Bench::clear_state(Backdoor& b) {
-    for (int p = 0; p < b.P; ++p) std::memset(b.mem[p], 0, b.mem_bytes);
+    for (const Backdoor::PeMem& m : b.mem)
+        for (uint8_t* bank : m.bank) std::memset(bank, 0, m.bank_bytes);
     std::memset(b.ext, 0, static_cast<size_t>(b.ext_bytes) * b.P);
 }
 

@@ -117,8 +117,11 @@ const std::vector<Assertion>& assertions() {
         {"a_pe_mask_nest", "imap_pe",
          "after mif / melse a PE is active only if it was active where the block opened"},
         {"a_pe_preload", "imap_pe",
-         "a preload (ring source, per-PE address, vout / xst rows) sees the registers and "
-         "memory as the same edge leaves them (write-back bypass)"},
+         "a preload (ring source, per-PE address, the ld / ldx / vout / xst row) sees the "
+         "registers and memory as the same edge leaves them (write-back and memory bypass)"},
+        {"a_pe_mem_write", "imap_pe",
+         "the local memory's one write port: a st / stx byte or rows per edge, never both, "
+         "and inside the memory"},
         {"a_ring_rotate", "imap_array",
          "after a ring hop every PE holds its neighbour's previous ring value (the ring wraps)"},
         {"a_maskbus_status", "imap_array", "rany / rall reduce T over exactly the active PEs"},

@@ -528,7 +528,8 @@ module imap_cp
           cw.pre = imap_pkg::PRE_ADDR;
           cw_pre = d_ldxoff;
         end
-        imap_pkg::OP_VOUT, imap_pkg::OP_XST: cw.pre = imap_pkg::PRE_ROW;
+        // ld reads its byte through the row port (byte 0 of the row)
+        imap_pkg::OP_LD, imap_pkg::OP_VOUT, imap_pkg::OP_XST: cw.pre = imap_pkg::PRE_ROW;
         imap_pkg::OP_XLD: begin
           xe_pf = 1'b1;
           xe_prow = d_ca;

@@ -26,8 +26,8 @@ struct Ports : sc_core::sc_module {
     sc_core::sc_signal<uint32_t> c_alu{"c_alu"}, c_mem{"c_mem"},
         c_indirect_extra{"c_indirect_extra"}, c_ring_hop{"c_ring_hop"}, c_mask{"c_mask"},
         c_status{"c_status"}, c_cp{"c_cp"}, c_branch_taken{"c_branch_taken"},
-        c_video_line{"c_video_line"}, c_xfer_setup{"c_xfer_setup"}, c_ext_bpc{"c_ext_bpc"}, c_ext_beat{"c_ext_beat"},
-        c_shift_bits{"c_shift_bits"}, c_minmax_extra{"c_minmax_extra"};
+        c_video_line{"c_video_line"}, c_xfer_setup{"c_xfer_setup"}, c_ext_bpc{"c_ext_bpc"},
+        c_ext_beat{"c_ext_beat"}, c_shift_bits{"c_shift_bits"}, c_minmax_extra{"c_minmax_extra"};
     sc_core::sc_signal<uint32_t> cfg_prog_len{"cfg_prog_len"}, cfg_pe_regs{"cfg_pe_regs"},
         cfg_mask_depth{"cfg_mask_depth"}, cfg_call_depth{"cfg_call_depth"};
     sc_core::sc_signal<bool> cfg_indirect{"cfg_indirect"}, cfg_ext_on{"cfg_ext_on"},
@@ -42,8 +42,15 @@ struct Backdoor {
     int P = 0;
     uint32_t mem_bytes = 0, ext_bytes = 0;
     int nregs = 0, phases = 0;
-    std::vector<uint8_t*> regs;   // per PE: nregs bytes
-    std::vector<uint8_t*> mem;    // per PE: mem_bytes bytes
+    std::vector<uint8_t*> regs;  // per PE: nregs bytes
+    // One PE's local memory: kHdlXrows banks, byte a in bank a % kHdlXrows at
+    // index a / kHdlXrows (imap_pe_mem.sv).
+    struct PeMem {
+        std::vector<uint8_t*> bank;
+        size_t bank_bytes = 0;
+        uint8_t& operator[](uint32_t a) const { return bank[a % bank.size()][a / bank.size()]; }
+    };
+    std::vector<PeMem> mem;       // per PE: mem_bytes bytes
     std::vector<uint8_t*> carry;  // per PE: C
     std::vector<uint8_t*> st;     // per PE: {oob, T, M}
     std::vector<void*> mstk;      // per PE: the mask stack (width: mstk_bytes)

@@ -165,10 +165,21 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
                 break;
             }
             b.regs.push_back(static_cast<uint8_t*>(var(pe, "regs", kHdlRegs)));
-            const VerilatedVar* mv = Verilated::scopeFind(pe.c_str())->varFind("mem");
-            if (!mv) throw std::runtime_error("RTL backdoor: no state element " + pe + ".mem");
-            b.mem_bytes = static_cast<uint32_t>(mv->totalSize());
-            b.mem.push_back(static_cast<uint8_t*>(mv->datap()));
+            const std::string um = pe + ".u_mem";
+            b.mem_bytes = *static_cast<const uint32_t*>(var(um, "BYTES", 4));
+            Backdoor::PeMem m;
+            for (int k = 0; k < kHdlXrows; ++k) {
+                const std::string bk = um + ".g_bank[" + std::to_string(k) + "]";
+                const VerilatedScope* s = Verilated::scopeFind(bk.c_str());
+                const VerilatedVar* v = s ? s->varFind("b") : nullptr;
+                if (!v) throw std::runtime_error("RTL backdoor: no state element " + bk + ".b");
+                m.bank_bytes = static_cast<size_t>(v->totalSize());
+                m.bank.push_back(static_cast<uint8_t*>(v->datap()));
+            }
+            if (m.bank_bytes * kHdlXrows < b.mem_bytes)
+                throw std::runtime_error("RTL backdoor: " + um + " banks hold fewer than " +
+                                         std::to_string(b.mem_bytes) + " bytes");
+            b.mem.push_back(std::move(m));
             b.carry.push_back(static_cast<uint8_t*>(var(pe, "c_q", 1)));
             b.st.push_back(static_cast<uint8_t*>(var(pe, "st_q", 1)));
             const VerilatedVar* sv = Verilated::scopeFind(pe.c_str())->varFind("mstk");
