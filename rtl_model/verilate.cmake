@@ -9,7 +9,7 @@
 # (read first: the design's assertions call it, IMAP_ASSERT_HOOK) and the
 # verification sources around the design (board model, the CP's retire
 # monitor, the testbench top imap_tb, Verilator's top module).
-set(IMAP_RTL_HDL_FILES imap_pkg.sv imap_pe_mem.sv imap_pe.sv imap_array.sv imap_cp.sv imap_perf.sv imap_top.sv)
+set(IMAP_RTL_HDL_FILES imap_pkg.sv imap_pe.sv imap_array.sv imap_cp.sv imap_perf.sv imap_top.sv)
 set(IMAP_RTL_HDL_HEADERS imap_params.svh imap_ports.svh imap_assert.svh imap_mutants.svh)
 set(IMAP_RTL_DPI_FILE imap_dpi_pkg.sv)
 set(IMAP_RTL_VERIF_FILES imap_board.sv imap_cp_monitor.sv imap_tb.sv)

@@ -2,15 +2,19 @@
 # Place and route of the design on an iCE40 (docs/rtl.md, "Place and route
 # (iCE40)"). The chip does not fit the largest iCE40 nextpnr-ice40 supports
 # (HX8K, 7,680 logic cells): its CP alone synthesizes to more LUTs than
-# that, even with 2 PEs and a 256-word instruction memory. So the units are
-# reported separately:
-#   - one imap_pe with 32 bytes of local memory, inside the harness
-#     rtl_model/synth/pnr_pe.sv: yosys synth_ice40, then nextpnr-ice40 on the
-#     HX8K (package ct256) with a fixed seed and --freq 40: LUT4,
-#     flip-flops, block RAMs, logic cells, the Fmax of clk;
+# that, even with 2 PEs and a 256-word instruction memory. So:
+#   - one imap_pe with its 1 KB local memory (the default), inside the
+#     harness rtl_model/synth/pnr_pe.sv: yosys synth_ice40 (the memory's
+#     eight banks become block RAMs), then nextpnr-ice40 on the HX8K
+#     (package ct256) with a fixed seed and --freq 40: LUT4, flip-flops,
+#     block RAMs, logic cells, the Fmax of clk;
 #   - the CP (P 2, 256-word instruction memory): synth_ice40 only (LUT4,
 #     flip-flops, block RAMs), with the HX8K's capacity beside it;
-#   - one imap_pe with 1 KB (the default): synth_ice40 only.
+#   - the whole chip (imap_top: P 2, 256-byte local memories, 256-word
+#     instruction memory) in the harness rtl_model/synth/pnr_chip.sv (straps
+#     tied to the default cost table, the testbench's counters left out):
+#     synth_ice40 only;
+#   - one imap_pe with 1 KB without the harness: synth_ice40 only.
 # Writes the figures, the configuration, the device, the tool versions and
 # this command into rtl_model/synth/pnr_ice40.json (checked in; the build
 # embeds it and imapsim prints the Fmax). Reads only the design files
@@ -30,8 +34,9 @@ JSON_OUT=$ROOT/rtl_model/synth/pnr_ice40.json
 # imap_pe.sv: NREGS 16, MASK_DEPTH 8, XROWS 8, CALL_DEPTH 16). The device:
 # HX8K, 7,680 logic cells and 32 block RAMs of 4 Kbit (Lattice iCE40 LP/HX
 # family data sheet), the largest iCE40 of nextpnr-ice40.
-PE_MEM=32
+PE_MEM=1024
 CP_P=2 CP_MEM=32 CP_EXT=256 CP_IMEM=256
+CHIP_P=2 CHIP_MEM=256 CHIP_EXT=256 CHIP_IMEM=256
 DEVICE=hx8k PACKAGE=ct256 SEED=1 FREQ=40
 
 for t in yosys nextpnr-ice40 python3; do
@@ -50,6 +55,12 @@ $rd $HDL/imap_cp.sv
 hierarchy -top imap_cp -chparam P $CP_P -chparam MEM_BYTES $CP_MEM -chparam EXT_BYTES $CP_EXT -chparam IMEM_WORDS $CP_IMEM
 synth_ice40 -top imap_cp
 tee -q -o $OUT/cp.stat.json stat -json
+YS
+cat >"$OUT/chip.ys" <<YS
+read_verilog -sv -DSYNTHESIS -DIMAP_NO_PERF -I$HDL $HDL/imap_pkg.sv $HDL/imap_pe.sv $HDL/imap_array.sv $HDL/imap_cp.sv $HDL/imap_top.sv $ROOT/rtl_model/synth/pnr_chip.sv
+hierarchy -top imap_pnr_chip -chparam P $CHIP_P -chparam MEM_BYTES $CHIP_MEM -chparam EXT_BYTES $CHIP_EXT -chparam IMEM_WORDS $CHIP_IMEM
+synth_ice40 -top imap_pnr_chip
+tee -q -o $OUT/chip.stat.json stat -json
 YS
 cat >"$OUT/pe1k.ys" <<YS
 $rd $HDL/imap_pe.sv
@@ -73,11 +84,15 @@ t2=$(date +%s)
 echo "rtl-pnr: yosys synth_ice40 of imap_pe (MEM_BYTES=1024) -> $OUT/pe1k.log"
 yosys -q -l "$OUT/pe1k.log" "$OUT/pe1k.ys" >/dev/null
 t3=$(date +%s)
+echo "rtl-pnr: yosys synth_ice40 of the chip (P=$CHIP_P, MEM_BYTES=$CHIP_MEM, IMEM_WORDS=$CHIP_IMEM) -> $OUT/chip.log"
+yosys -q -l "$OUT/chip.log" "$OUT/chip.ys" >/dev/null
+t4=$(date +%s)
 
 YOSYS_V=$(yosys -V) NEXTPNR_V=$(nextpnr-ice40 --version 2>&1 | head -1) \
 PE_MEM=$PE_MEM CP_P=$CP_P CP_MEM=$CP_MEM CP_EXT=$CP_EXT CP_IMEM=$CP_IMEM \
+CHIP_P=$CHIP_P CHIP_MEM=$CHIP_MEM CHIP_EXT=$CHIP_EXT CHIP_IMEM=$CHIP_IMEM \
 DEVICE=$DEVICE PACKAGE=$PACKAGE SEED=$SEED FREQ=$FREQ OUT=$OUT JSON_OUT=$JSON_OUT \
-S_PE=$((t1 - t0)) S_CP=$((t2 - t1)) S_PE1K=$((t3 - t2)) python3 - <<'PY'
+S_PE=$((t1 - t0)) S_CP=$((t2 - t1)) S_PE1K=$((t3 - t2)) S_CHIP=$((t4 - t3)) python3 - <<'PY'
 import json, os
 e = os.environ
 def cells(name, top):
@@ -90,6 +105,7 @@ def cells(name, top):
 pe = cells("pe.stat.json", "imap_pnr_pe")
 cp = cells("cp.stat.json", "imap_cp")
 pe1k = cells("pe1k.stat.json", "imap_pe")
+chip = cells("chip.stat.json", "imap_pnr_chip")
 rep = json.load(open(e["OUT"] + "/pnr.report.json"))
 clk = [v for k, v in rep["fmax"].items() if "clk" in k]
 if len(clk) != 1:
@@ -102,8 +118,10 @@ out = {
     "tools": {"yosys": e["YOSYS_V"], "nextpnr": e["NEXTPNR_V"]},
     "command": "scripts/rtl-pnr.sh",
     "seed": int(e["SEED"]), "target_mhz": float(e["FREQ"]),
-    "fits": "the PE; not the CP (more LUT4 than the device has logic cells)",
-    "configuration": {"text": "one PE of %s bytes; the CP does not fit" % e["PE_MEM"],
+    "fits": "the PE with its local memory; not the CP, not the chip (more LUT4 than the "
+            "device has logic cells)",
+    "configuration": {"text": "one PE of %s bytes, its memory in block RAMs; the CP does not "
+                              "fit" % e["PE_MEM"],
                       "placed": "imap_pe", "MEM_BYTES": int(e["PE_MEM"]),
                       "other": "NREGS 16, MASK_DEPTH 8, XROWS 8 (defaults)",
                       "harness": "rtl_model/synth/pnr_pe.sv (serial input shift register, "
@@ -114,8 +132,13 @@ out = {
     "cp": dict(cp, P=int(e["CP_P"]), MEM_BYTES=int(e["CP_MEM"]), EXT_BYTES=int(e["CP_EXT"]),
                IMEM_WORDS=int(e["CP_IMEM"]), fits=cp["lut4"] <= lc_avail),
     "pe_1k": dict(pe1k, MEM_BYTES=1024),
+    "chip": dict(chip, P=int(e["CHIP_P"]), MEM_BYTES=int(e["CHIP_MEM"]),
+                 EXT_BYTES=int(e["CHIP_EXT"]), IMEM_WORDS=int(e["CHIP_IMEM"]),
+                 harness="rtl_model/synth/pnr_chip.sv (straps tied to the default cost "
+                         "table, counters left out, serial inputs, XOR-folded outputs)",
+                 fits=chip["lut4"] <= lc_avail),
     "run_seconds": {"pe_synth_pnr": int(e["S_PE"]), "cp_synth": int(e["S_CP"]),
-                    "pe_1k_synth": int(e["S_PE1K"])},
+                    "pe_1k_synth": int(e["S_PE1K"]), "chip_synth": int(e["S_CHIP"])},
 }
 open(e["JSON_OUT"], "w").write(json.dumps(out, indent=2) + "\n")
 p = out["pe"]
@@ -126,6 +149,9 @@ print("rtl-pnr: imap_cp P=%s: %d LUT4, %d FF, %d BRAM (%s the %d logic cells)" %
       (e["CP_P"], cp["lut4"], cp["ff"], cp["bram"], "fits" if out["cp"]["fits"] else "exceeds",
        lc_avail))
 print("rtl-pnr: imap_pe 1 KB: %d LUT4, %d FF, %d BRAM" % (pe1k["lut4"], pe1k["ff"], pe1k["bram"]))
+print("rtl-pnr: chip P=%s, %s B: %d LUT4, %d FF, %d BRAM (%s the %d logic cells)" %
+      (e["CHIP_P"], e["CHIP_MEM"], chip["lut4"], chip["ff"], chip["bram"],
+       "fits" if out["chip"]["fits"] else "exceeds", lc_avail))
 print("rtl-pnr: wrote " + e["JSON_OUT"])
 PY
-echo "rtl-pnr: $((t3 - t0)) s (PE synth + place and route $((t1 - t0)) s, CP synth $((t2 - t1)) s, PE 1 KB synth $((t3 - t2)) s)"
+echo "rtl-pnr: $((t4 - t0)) s (PE synth + place and route $((t1 - t0)) s, CP synth $((t2 - t1)) s, PE 1 KB synth $((t3 - t2)) s, chip synth $((t4 - t3)) s)"

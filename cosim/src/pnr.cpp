@@ -62,6 +62,10 @@ PnrFigures parse_pnr(const std::string& text) {
     f.cp = unit(cp, "cp");
     f.cp_fits = cp.value("fits", false);
     f.pe1k = unit(j.contains("pe_1k") ? j["pe_1k"] : nlohmann::json::object(), "pe_1k");
+    if (j.contains("chip")) {
+        f.chip = unit(j["chip"], "chip");
+        f.chip_fits = j["chip"].value("fits", false);
+    }
     f.available = true;
     return f;
 }

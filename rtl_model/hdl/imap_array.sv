@@ -21,7 +21,7 @@ module imap_array
     input imap_pkg::cwx_t cwx,
     input logic [31:0] cw_pre,
     input logic [P*XROWS*8-1:0] rbus,  // row bus into the PEs (PE p: slice p)
-    output logic [XROWS*8-1:0] rrow[P],  // the PEs' row read ports
+    output logic [P*XROWS*8-1:0] rrow,  // the PEs' row read ports (PE p: slice p)
     // mask bus
     input logic red_status,  // rany / rall in execute
     input logic red_memx,  // ldx / stx in execute: check the preloaded addresses
@@ -65,7 +65,7 @@ module imap_array
         .ring_q(ring[p]),
         .st_q(st[p]),
         .xoff_q(xoff[p]),
-        .row_q(rrow[p])
+        .row_q(rrow[p*XROWS*8+:XROWS*8])
     );
   end
 

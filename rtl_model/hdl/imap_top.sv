@@ -25,7 +25,7 @@ module imap_top
     output logic [31:0] xe_wrow,
     output logic [3:0] xe_n,
     output logic [P-1:0] xe_pm,  // the PEs' M bits (xst writes the active PEs' bytes)
-    output logic [XROWS*8-1:0] rrow[P],
+    output logic [P*XROWS*8-1:0] rrow,  // PE p: slice p
     input logic [P*XROWS*8-1:0] rbus,  // row bus: PE p reads slice p
     // board: video line port (vid_open when vin / vout enters execute, the
     // board answers vid_status at the next edge and loads a vin line onto
@@ -94,7 +94,11 @@ module imap_top
       .*
   );
 
+`ifndef IMAP_NO_PERF
+  // the testbench's counters (left out of the place-and-route harness of the
+  // chip, rtl_model/synth/pnr_chip.sv: 512 64-bit counters are not the chip)
   imap_perf #(.PHASES(PHASES)) u_perf (.*);
+`endif
 
   assign done = halted | faulted;
 

@@ -8,7 +8,7 @@
 // register), the XOR tree and one flip-flop.
 // The PE's other parameters stay at their defaults (NREGS 16, MASK_DEPTH 8,
 // XROWS 8: the row ports below are 8 bytes).
-module imap_pnr_pe #(parameter int MEM_BYTES = 32) (input logic clk, sin, output logic sout);
+module imap_pnr_pe #(parameter int MEM_BYTES = 1024) (input logic clk, sin, output logic sout);
   localparam int XROWS = 8;
   imap_pkg::cw_t cw;
   imap_pkg::cwx_t cwx;

@@ -35,7 +35,7 @@ module imap_board
     input logic [0:0] vid_pport,
     input logic [31:0] vid_py,
     input logic [31:0] vid_px,
-    input logic [XROWS*8-1:0] rrow[P],
+    input logic [P*XROWS*8-1:0] rrow,  // PE p: slice p
     output logic [P*XROWS*8-1:0] rbus,
     output logic [1:0] vid_status,
     output logic [63:0] vid_ready  // of the last vin's vid_open: cycle its pixels have arrived
@@ -57,7 +57,7 @@ module imap_board
       for (int i = 0; i < XROWS; i++)
         if (i < int'(xe_n) && xe_wrow + 32'(i) < 32'(EXT_BYTES))
           for (int p = 0; p < P; p++) begin
-            if (xe_pm[p]) ext[(xe_wrow+32'(i))*32'(P)+32'(p)] = rrow[p][i*8+:8];
+            if (xe_pm[p]) ext[(xe_wrow+32'(i))*32'(P)+32'(p)] = rrow[(p*XROWS+i)*8+:8];
           end
     if (xe_pf) begin
       for (int i = 0; i < XROWS; i++) begin
@@ -82,7 +82,7 @@ module imap_board
     end
     if (vid_put)
       for (int p = 0; p < P; p++)
-        imap_rtl_vid_put(int'(vid_pport), int'(vid_py), int'(vid_px) + p, int'(rrow[p][7:0]));
+        imap_rtl_vid_put(int'(vid_pport), int'(vid_py), int'(vid_px) + p, int'(rrow[p*XROWS*8+:8]));
   end
 
 endmodule

@@ -51,7 +51,7 @@ module imap_tb
   logic [1:0] vid_status;
   logic [63:0] vid_ready;
   logic [P*XROWS*8-1:0] rbus;
-  logic [XROWS*8-1:0] rrow[P];
+  logic [P*XROWS*8-1:0] rrow;
 
   // the host port and the straps, packed as the chip takes them (the
   // fields of imap_pkg::host_t / straps_t, in their order)

@@ -165,19 +165,18 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
                 break;
             }
             b.regs.push_back(static_cast<uint8_t*>(var(pe, "regs", kHdlRegs)));
-            const std::string um = pe + ".u_mem";
-            b.mem_bytes = *static_cast<const uint32_t*>(var(um, "BYTES", 4));
+            b.mem_bytes = *static_cast<const uint32_t*>(var(pe, "MEM_BYTES", 4));
             Backdoor::PeMem m;
             for (int k = 0; k < kHdlXrows; ++k) {
-                const std::string bk = um + ".g_bank[" + std::to_string(k) + "]";
-                const VerilatedScope* s = Verilated::scopeFind(bk.c_str());
-                const VerilatedVar* v = s ? s->varFind("b") : nullptr;
-                if (!v) throw std::runtime_error("RTL backdoor: no state element " + bk + ".b");
+                const std::string name = "bank" + std::to_string(k);
+                const VerilatedVar* v = Verilated::scopeFind(pe.c_str())->varFind(name.c_str());
+                if (!v)
+                    throw std::runtime_error("RTL backdoor: no state element " + pe + "." + name);
                 m.bank_bytes = static_cast<size_t>(v->totalSize());
                 m.bank.push_back(static_cast<uint8_t*>(v->datap()));
             }
             if (m.bank_bytes * kHdlXrows < b.mem_bytes)
-                throw std::runtime_error("RTL backdoor: " + um + " banks hold fewer than " +
+                throw std::runtime_error("RTL backdoor: the banks of " + pe + " hold fewer than " +
                                          std::to_string(b.mem_bytes) + " bytes");
             b.mem.push_back(std::move(m));
             b.carry.push_back(static_cast<uint8_t*>(var(pe, "c_q", 1)));

@@ -31,10 +31,17 @@ BOOST_AUTO_TEST_CASE(embedded_figures_parse_and_name_the_device) {
     BOOST_TEST(f.cp_fits == (f.cp.lut4 <= f.logic_cells_available));
     BOOST_TEST(f.fmax_mhz > 1.0);
     BOOST_TEST(f.fmax_mhz < 500.0);  // an iCE40 runs nothing near 500 MHz
-    // one PE with 1 KB: the memory in flip-flops (at least its 8,192 bits)
-    BOOST_TEST(f.pe1k.ff >= 8192u);
-    BOOST_TEST(f.pe1k.lut4 > f.pe1k.ff);
-    BOOST_TEST(f.pe1k.bram == 0u);
+    // the local memory of 1 KB is the eight banks in block RAMs, not in
+    // flip-flops (its 8,192 bits would be 8,192 flip-flops), in the placed
+    // PE and in the PE synthesized alone
+    BOOST_TEST(f.pe.bram == 8u);
+    BOOST_TEST(f.pe1k.bram == 8u);
+    BOOST_TEST(f.pe1k.ff < 8192u);
+    BOOST_TEST(f.pe.ff < 8192u);
+    // the whole chip (2 PEs): synthesized; whether it fits
+    BOOST_TEST(f.chip.lut4 > f.cp.lut4 / 2);
+    BOOST_TEST(f.chip.bram >= 2 * 8u);  // two PEs' banks at least
+    BOOST_TEST(f.chip_fits == (f.chip.lut4 <= f.logic_cells_available));
 }
 
 BOOST_AUTO_TEST_CASE(the_fmax_against_a_clock) {
@@ -86,6 +93,18 @@ BOOST_AUTO_TEST_CASE(bad_figures_name_the_field) {
     rejected(figures(R"({"ff": 5, "logic_cells": 12, "logic_cells_available": 7680,
                          "fmax_mhz": 3})"),
              "pe.lut4");
+    // the chip's figures are optional; when present, they are checked
+    std::string chip = figures(ok);
+    chip.insert(chip.rfind('}'),
+                R"(, "chip": {"lut4": 12000, "ff": 2400, "bram": 22, "fits": false})");
+    const rtl::PnrFigures c = rtl::parse_pnr(chip);
+    BOOST_TEST(c.chip.lut4 == 12000u);
+    BOOST_TEST(c.chip.bram == 22u);
+    BOOST_TEST(!c.chip_fits);
+    BOOST_TEST(rtl::parse_pnr(figures(ok)).chip.lut4 == 0u);
+    std::string bad_chip = figures(ok);
+    bad_chip.insert(bad_chip.rfind('}'), R"(, "chip": {"ff": 2400})");
+    rejected(bad_chip, "chip.lut4");
     rejected("{", "not JSON");
     rejected(R"({"package": "ct256"})", "technology");
 }

@@ -18,13 +18,15 @@ struct PnrFigures {
     std::string technology;     // "iCE40 HX8K"
     std::string package;        // "ct256"
     std::string tool;           // the nextpnr version line
-    std::string configuration;  // what was placed: "one PE of 32 bytes; the CP does not fit"
+    std::string configuration;  // what was placed: "one PE of 1024 bytes, ..."
     PnrUnit pe;                 // the placed PE (with its harness)
     uint64_t logic_cells = 0, logic_cells_available = 0;
     double fmax_mhz = 0;   // the clock's achieved Fmax (nextpnr, fixed seed)
     PnrUnit cp;            // the CP, synthesized only
     bool cp_fits = false;  // whether the CP's LUT4 fit the device's logic cells
     PnrUnit pe1k;          // one imap_pe with 1 KB, synthesized only
+    PnrUnit chip;          // the whole chip of a few PEs, synthesized only (if recorded)
+    bool chip_fits = false;
 };
 
 // Parses the JSON written by scripts/rtl-pnr.sh. Throws std::runtime_error
