@@ -44,7 +44,7 @@ struct Backdoor {
     int nregs = 0, phases = 0;
     std::vector<uint8_t*> regs;  // per PE: nregs bytes
     // One PE's local memory: kHdlXrows banks, byte a in bank a % kHdlXrows at
-    // index a / kHdlXrows (imap_pe_mem.sv).
+    // index a / kHdlXrows (imap_pe.sv, bank0 .. bank7).
     struct PeMem {
         std::vector<uint8_t*> bank;
         size_t bank_bytes = 0;
