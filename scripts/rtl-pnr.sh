@@ -93,8 +93,17 @@ PE_MEM=$PE_MEM CP_P=$CP_P CP_MEM=$CP_MEM CP_EXT=$CP_EXT CP_IMEM=$CP_IMEM \
 CHIP_P=$CHIP_P CHIP_MEM=$CHIP_MEM CHIP_EXT=$CHIP_EXT CHIP_IMEM=$CHIP_IMEM \
 DEVICE=$DEVICE PACKAGE=$PACKAGE SEED=$SEED FREQ=$FREQ OUT=$OUT JSON_OUT=$JSON_OUT \
 S_PE=$((t1 - t0)) S_CP=$((t2 - t1)) S_PE1K=$((t3 - t2)) S_CHIP=$((t4 - t3)) python3 - <<'PY'
-import json, os
+import hashlib, json, os
 e = os.environ
+# the design the figures are of: rtl_model/hdl as the build embeds it
+# (imap::rtl::design_sha256, checked by the test rtl.pnr)
+hdl = os.path.join(os.path.dirname(e["JSON_OUT"]), "..", "hdl")
+h = hashlib.sha256()
+for name in sorted(os.listdir(hdl)):
+    if name.endswith((".sv", ".svh")):
+        text = open(os.path.join(hdl, name), "rb").read()
+        h.update(b"file hdl/%s %d\n" % (name.encode(), len(text)))
+        h.update(text)
 def cells(name, top):
     mods = json.load(open(e["OUT"] + "/" + name))["modules"]
     m = (mods.get(top) or mods["\\" + top])["num_cells_by_type"]
@@ -117,6 +126,7 @@ out = {
     "device": e["DEVICE"], "package": e["PACKAGE"],
     "tools": {"yosys": e["YOSYS_V"], "nextpnr": e["NEXTPNR_V"]},
     "command": "scripts/rtl-pnr.sh",
+    "hdl_sha256": h.hexdigest(),
     "seed": int(e["SEED"]), "target_mhz": float(e["FREQ"]),
     "fits": "the PE with its local memory; not the CP, not the chip (more LUT4 than the "
             "device has logic cells)",

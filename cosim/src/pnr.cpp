@@ -3,6 +3,9 @@
 // states the Fmax against a clock.
 #include "imap/rtl/pnr.hpp"
 
+#include "sha256.hpp"
+
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -15,6 +18,10 @@ namespace detail::pnr {
 // rtl_model/synth/pnr_ice40.json (rtl_model/CMakeLists.txt embeds it)
 const std::vector<std::pair<const char*, const char*>>& embedded_sources();
 }  // namespace detail::pnr
+namespace detail {
+// the RTL sources of this build (rtl_sources.cpp; paths relative to rtl_model/)
+const std::vector<std::pair<const char*, const char*>>& embedded_sources();
+}  // namespace detail
 
 namespace {
 uint64_t positive(const nlohmann::json& o, const char* key, const char* where) {
@@ -62,6 +69,7 @@ PnrFigures parse_pnr(const std::string& text) {
     f.cp = unit(cp, "cp");
     f.cp_fits = cp.value("fits", false);
     f.pe1k = unit(j.contains("pe_1k") ? j["pe_1k"] : nlohmann::json::object(), "pe_1k");
+    f.hdl_sha256 = j.value("hdl_sha256", std::string());
     if (j.contains("chip")) {
         f.chip = unit(j["chip"], "chip");
         f.chip_fits = j["chip"].value("fits", false);
@@ -77,6 +85,19 @@ const PnrFigures& place_and_route() {
         return *t ? parse_pnr(t) : PnrFigures{};
     }();
     return f;
+}
+
+std::string design_sha256() {
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& [path, text] : detail::embedded_sources())
+        if (std::string(path).rfind("hdl/", 0) == 0) files.emplace_back(path, text);
+    std::sort(files.begin(), files.end());
+    detail::Sha256 h;
+    for (const auto& [path, text] : files) {
+        h.update("file " + path + " " + std::to_string(text.size()) + "\n");
+        h.update(text);
+    }
+    return h.hex();
 }
 
 bool above_fmax(const PnrFigures& f, double clock_mhz) {

@@ -44,6 +44,16 @@ BOOST_AUTO_TEST_CASE(embedded_figures_parse_and_name_the_device) {
     BOOST_TEST(f.chip_fits == (f.chip.lut4 <= f.logic_cells_available));
 }
 
+BOOST_AUTO_TEST_CASE(figures_are_of_this_design) {
+    // an HDL change without a new run of scripts/rtl-pnr.sh fails here
+    const rtl::PnrFigures& f = rtl::place_and_route();
+    BOOST_REQUIRE(f.available);
+    BOOST_TEST(f.hdl_sha256.size() == 64u);
+    BOOST_TEST(f.hdl_sha256 == rtl::design_sha256(),
+               "the place-and-route figures (rtl_model/synth/pnr_ice40.json) are of another "
+               "design: run scripts/rtl-pnr.sh");
+}
+
 BOOST_AUTO_TEST_CASE(the_fmax_against_a_clock) {
     const rtl::PnrFigures& f = rtl::place_and_route();
     BOOST_REQUIRE(f.available);

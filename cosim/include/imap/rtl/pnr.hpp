@@ -27,11 +27,17 @@ struct PnrFigures {
     PnrUnit pe1k;          // one imap_pe with 1 KB, synthesized only
     PnrUnit chip;          // the whole chip of a few PEs, synthesized only (if recorded)
     bool chip_fits = false;
+    std::string hdl_sha256;  // the design the figures are of (design_sha256() then)
 };
 
 // Parses the JSON written by scripts/rtl-pnr.sh. Throws std::runtime_error
 // naming the missing or invalid field.
 PnrFigures parse_pnr(const std::string& json);
+
+// The hash of this build's design files (rtl_model/hdl, as embedded): for
+// each file in name order, "file hdl/NAME SIZE\n" and its text, SHA-256.
+// scripts/rtl-pnr.sh records the same hash of the files it placed.
+std::string design_sha256();
 
 // The figures of this build (parsed once).
 const PnrFigures& place_and_route();
