@@ -6,6 +6,7 @@
 // fault injection) and the Verilator wave writer of a traced variant.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -37,6 +38,14 @@ struct Ports : sc_core::sc_module {
     sc_core::sc_signal<bool> done{"done"};
 };
 
+// The sizes fixed in the HDL of every configuration (imap_top parameters).
+inline constexpr int kHdlRegs = 16;
+inline constexpr int kHdlMaskDepth = 8;
+inline constexpr int kHdlCallDepth = 16;
+inline constexpr uint32_t kHdlImemWords = 65536;
+inline constexpr int kHdlXrows = 8;
+inline constexpr int kHdlPhases = 256;
+
 // Raw pointers into the model's state (layouts as Verilator stores them).
 struct Backdoor {
     int P = 0;
@@ -46,9 +55,9 @@ struct Backdoor {
     // One PE's local memory: kHdlXrows banks, byte a in bank a % kHdlXrows at
     // index a / kHdlXrows (imap_pe.sv, bank0 .. bank7).
     struct PeMem {
-        std::vector<uint8_t*> bank;
+        std::array<uint8_t*, kHdlXrows> bank{};
         size_t bank_bytes = 0;
-        uint8_t& operator[](uint32_t a) const { return bank[a % bank.size()][a / bank.size()]; }
+        uint8_t& operator[](uint32_t a) const { return bank[a % kHdlXrows][a / kHdlXrows]; }
     };
     std::vector<PeMem> mem;       // per PE: mem_bytes bytes
     std::vector<uint8_t*> carry;  // per PE: C
@@ -114,13 +123,5 @@ const char* build_binary_dir();
 const char* build_extra_configs();
 const char* build_trace_configs();
 bool build_fst_all();  // IMAP_RTL_FST_ALL: every configuration FST-traced
-
-// The sizes fixed in the HDL of every configuration (imap_top parameters).
-inline constexpr int kHdlRegs = 16;
-inline constexpr int kHdlMaskDepth = 8;
-inline constexpr int kHdlCallDepth = 16;
-inline constexpr uint32_t kHdlImemWords = 65536;
-inline constexpr int kHdlXrows = 8;
-inline constexpr int kHdlPhases = 256;
 
 }  // namespace imap::rtl::detail

@@ -122,12 +122,16 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
         // the testbench top (imap_tb): the chip u_chip and the board model u_board
         const std::string top = std::string(dut_.name()) + ".imap_tb";
         const std::string chip = top + ".u_chip";
-        auto var = [&](const std::string& scope, const char* name, size_t bytes) -> void* {
+        auto find = [&](const std::string& scope, const std::string& name) {
             const VerilatedScope* s = Verilated::scopeFind(scope.c_str());
             if (!s) throw std::runtime_error("RTL backdoor: no scope " + scope);
-            const VerilatedVar* v = s->varFind(name);
+            const VerilatedVar* v = s->varFind(name.c_str());
             if (!v)
                 throw std::runtime_error("RTL backdoor: no state element " + scope + "." + name);
+            return v;
+        };
+        auto var = [&](const std::string& scope, const char* name, size_t bytes) -> void* {
+            const VerilatedVar* v = find(scope, name);
             if (bytes != 0 && static_cast<size_t>(v->totalSize()) != bytes)
                 throw std::runtime_error("RTL backdoor: " + scope + "." + name + " has " +
                                          std::to_string(v->totalSize()) + " bytes, expected " +
@@ -168,12 +172,9 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
             b.mem_bytes = *static_cast<const uint32_t*>(var(pe, "MEM_BYTES", 4));
             Backdoor::PeMem m;
             for (int k = 0; k < kHdlXrows; ++k) {
-                const std::string name = "bank" + std::to_string(k);
-                const VerilatedVar* v = Verilated::scopeFind(pe.c_str())->varFind(name.c_str());
-                if (!v)
-                    throw std::runtime_error("RTL backdoor: no state element " + pe + "." + name);
+                const VerilatedVar* v = find(pe, "bank" + std::to_string(k));
                 m.bank_bytes = static_cast<size_t>(v->totalSize());
-                m.bank.push_back(static_cast<uint8_t*>(v->datap()));
+                m.bank[static_cast<size_t>(k)] = static_cast<uint8_t*>(v->datap());
             }
             if (m.bank_bytes * kHdlXrows < b.mem_bytes)
                 throw std::runtime_error("RTL backdoor: the banks of " + pe + " hold fewer than " +
@@ -181,16 +182,12 @@ class ModelImpl final : private TraceOn<Trace>, public Model {
             b.mem.push_back(std::move(m));
             b.carry.push_back(static_cast<uint8_t*>(var(pe, "c_q", 1)));
             b.st.push_back(static_cast<uint8_t*>(var(pe, "st_q", 1)));
-            const VerilatedVar* sv = Verilated::scopeFind(pe.c_str())->varFind("mstk");
-            if (!sv) throw std::runtime_error("RTL backdoor: no state element " + pe + ".mstk");
+            const VerilatedVar* sv = find(pe, "mstk");
             b.mstk_bytes = static_cast<int>(sv->totalSize());
             b.mstk.push_back(sv->datap());
         }
         const std::string board = top + ".u_board";
-        const VerilatedVar* ev = Verilated::scopeFind(board.c_str())
-                                     ? Verilated::scopeFind(board.c_str())->varFind("ext")
-                                     : nullptr;
-        if (!ev) throw std::runtime_error("RTL backdoor: no state element " + board + ".ext");
+        const VerilatedVar* ev = find(board, "ext");
         b.ext = static_cast<uint8_t*>(ev->datap());
         b.ext_bytes = b.P > 0 ? static_cast<uint32_t>(ev->totalSize() / b.P) : 0;
         return b;
