@@ -39,6 +39,7 @@ module imap_array
   logic [7:0] ring[P];
   logic [2:0] st[P];
   logic [15:0] xoff[P];
+  logic [XROWS*8-1:0] prow[P];  // each PE's row read port (gathered onto rrow below)
 
   for (genvar p = 0; p < P; p++) begin : g_pe
     // ring neighbours: nb_lo = PE p-1 (rxl moves data to higher indices),
@@ -65,9 +66,14 @@ module imap_array
         .ring_q(ring[p]),
         .st_q(st[p]),
         .xoff_q(xoff[p]),
-        .row_q(rrow[p*XROWS*8+:XROWS*8])
+        .row_q(prow[p])
     );
   end
+
+  // The row read ports as one bus (a flat port: yosys reads no array port).
+  // Slice by slice: the simulator then writes each PE's 8 bytes in place
+  // rather than re-concatenating the whole P x 8-byte bus.
+  always_comb for (int p = 0; p < P; p++) rrow[p*XROWS*8+:XROWS*8] = prow[p];
 
   // The mask bus reductions: evaluated only while an instruction needs them.
   always_comb begin
