@@ -21,11 +21,12 @@ set tics nomirror
 set logscale x 2
 set logscale y 10
 set xrange [8:200]
-set yrange [0.61021875:160]
+set yrange [0.4489140625:160]
 set xtics ("10" 10, "20" 20, "40" 40, "80" 80, "160" 160)
-unset key
+set key top right box opaque samplen 2 width 1 height 0.5
 set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"
 set label 1 "real time, 10 fps (100 ms)" at graph 0.01, first 100 left offset 0,0.7 textcolor rgb "#666666"
 set arrow 2 from graph 0, first 40 to graph 1, first 40 nohead dt 2 lw 1.5 lc rgb "#888888"
 set label 2 "video rate, 25 fps (40 ms)" at graph 0.01, first 40 left offset 0,0.7 textcolor rgb "#666666"
-plot datafile index 0 using 1:2 with linespoints lw 2 pt 7 ps 1.3 notitle
+plot datafile index 0 using 1:2 with linespoints lw 2 lt 1 pt 7 ps 1.3 title "achieved (firmware)", \
+     datafile index 1 using 1:2 with lines lw 1.5 dt 2 lt 1 title "machine bound"

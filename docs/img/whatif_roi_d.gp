@@ -20,18 +20,22 @@ set border 3 lc rgb "#444444"
 set tics nomirror
 set logscale y 10
 set xrange [23.04:264.96]
-set yrange [0.694828125:160]
+set yrange [0.26284375:160]
 set xtics ("32" 32, "64" 64, "128" 128, "256" 256)
-set key top right box opaque samplen 2 width 1 height 0.5
+set key outside right top vertical
 set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"
 set label 1 "real time, 10 fps (100 ms)" at graph 0.01, first 100 left offset 0,0.7 textcolor rgb "#666666"
 set arrow 2 from graph 0, first 40 to graph 1, first 40 nohead dt 2 lw 1.5 lc rgb "#888888"
 set label 2 "video rate, 25 fps (40 ms)" at graph 0.01, first 40 left offset 0,0.7 textcolor rgb "#666666"
 set label 3 "3 points that do not fit / cannot run not shown" at graph 0.01, graph 0.03 left front textcolor rgb "#444444"
-set label 4 "knee: beyond 128x128, relayout_in +240%" at first 128, first 2.125925 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
-set label 5 "knee: beyond 128x128, forward +107%" at first 128, first 2.72315 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
-set label 6 "knee: beyond 128x128, forward +115%" at first 128, first 3.9054 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
-plot datafile index 0 using 1:2 with linespoints lw 2 pt 7 ps 1.3 title "D=16", \
-     datafile index 1 using 1:2 with linespoints lw 2 pt 5 ps 1.3 title "D=32", \
-     datafile index 2 using 1:2 with linespoints lw 2 pt 9 ps 1.3 title "D=64", \
-     datafile index 3 using 1:2 with linespoints lw 2 pt 11 ps 1.3 title "D=128"
+set label 4 "beyond ROI 128x128 the time grows 167%, relayout_in grows 240%" at first 128, first 2.12615 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+set label 5 "beyond ROI 128x128 the time grows 182%, forward grows 107%" at first 128, first 2.723375 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+set label 6 "beyond ROI 128x128 the time grows 192%, forward grows 115%" at first 128, first 3.905625 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+plot datafile index 0 using 1:2 with linespoints lw 2 lt 1 pt 7 ps 1.3 title "D=16", \
+     datafile index 1 using 1:2 with linespoints lw 2 lt 2 pt 5 ps 1.3 title "D=32", \
+     datafile index 2 using 1:2 with linespoints lw 2 lt 3 pt 9 ps 1.3 title "D=64", \
+     datafile index 3 using 1:2 with linespoints lw 2 lt 4 pt 11 ps 1.3 title "D=128", \
+     datafile index 4 using 1:2 with lines lw 1.5 dt 2 lt 1 title "D=16: machine bound", \
+     datafile index 5 using 1:2 with lines lw 1.5 dt 2 lt 2 title "D=32: machine bound", \
+     datafile index 6 using 1:2 with lines lw 1.5 dt 2 lt 3 title "D=64: machine bound", \
+     datafile index 7 using 1:2 with lines lw 1.5 dt 2 lt 4 title "D=128: machine bound"

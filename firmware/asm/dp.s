@@ -6,8 +6,10 @@
 ; re-layout) that includes this file, and writes the number of batches
 ; into param[0]. The batches follow from three constants (no table, so no
 ; limit on their number): batch outputs ROI lines o .. o + BSTRIDE - 1
-; (o = 0, BSTRIDE, ...; the last one ends at HROI), and with BOVERLAP (the
-; vote across batches) it also holds the line above and below them.
+; (o = 0, BSTRIDE, ...; the last one ends at HROI), and with BOVERLAP it
+; also holds that many lines above and below them (the halo: the vote's
+; neighbours, the vertical window's and the census's lines; their own
+; results are never output).
 ; Input images arrive on video ports 0 (left) and 1 (right); the disparity
 ; map (ROI-sized) leaves on video output port 0.
 .include "dp_setup.inc"
@@ -30,11 +32,24 @@ bla\@:
         cmov    c8, c0
 .if BOVERLAP
         bge     c9, c1, blb\@
-        caddi   c9, c9, #1                  ; last = min(HROI, oe + 1)
+        caddi   c9, c9, #BOVERLAP           ; last = min(HROI, oe + BOVERLAP)
+.if BOVERLAP > 1
+        blt     c9, c1, blb\@
+        cmov    c9, c1
+.endif
 blb\@:
+.if BOVERLAP > 1
+        cli     c8, #0
+        cli     c1, #BOVERLAP
+        blt     c0, c1, bld\@
+        csubi   c8, c0, #BOVERLAP           ; first = max(0, o - BOVERLAP)
+bld\@:
+        cli     c1, #HROI
+.else
         bz      c0, blc\@
         csubi   c8, c0, #1                  ; first = max(0, o - 1)
 blc\@:
+.endif
 .endif
         csub    c9, c9, c8
 .endm

@@ -1,8 +1,8 @@
 // The planner's entry (plan_frame) and its refusals. The checks that refuse
 // what the firmware cannot run exactly (SPEC A.9 options, the 16-bit cost
 // range), from the parameters; then the frame plan (FramePlan) of a ROI on a
-// machine: lines per batch and the batches (overlapping by one line at inner
-// edges when the vote is on, one line at a time on arrays of 2 to 5 PEs), the
+// machine: lines per batch and the batches (overlapping at inner edges by
+// the halo, one line at a time on arrays of 2 to 5 PEs with the vote), the
 // video, census-code and output rows in the local memory, and where single
 // mode's spilled pointer columns go (the external memory or the spare PE
 // above each line, whichever the cost estimate prefers). The forward plan
@@ -81,57 +81,47 @@ std::string one_segment_limit(const FramePlan& fp) {
     return os.str();
 }
 
-// Why the ROI's lines are not in one batch, for the options that need them
-// there: what a batch holds on this machine (P PEs, `span` per line, at most
-// kMaxBatchLines; with the vote, fewer than 3 lines per batch run one line
-// per batch) and what would hold them (--pes, or a shorter ROI); with the
-// census, also its segment when the ROI is wider than P.
-std::string one_batch_limit(const FramePlan& fp, const golden::Params& p, int span, bool tiny) {
-    const int H = fp.roi.h, per = fp.P / span, cap = std::min(per, kMaxBatchLines);
+// The lines a batch holds beyond the ones it outputs, on each side at an
+// inner batch edge (the halo): an output line y needs the paths of y -+ 1
+// for the vote, their match costs the window's lines y -+ 1 -+ agg_ry, and
+// those lines' census codes the lines r further out. A halo line's own
+// values, clamped at the batch's edge, are never output.
+int batch_halo(const golden::Params& p) {
+    return (p.vote ? 1 : 0) + p.agg_ry + (p.kc > 0 ? p.census : 0);
+}
+
+// Batches too short for their halo: what the halo is made of and what
+// would hold it (more PEs, or a ROI in one batch).
+FirmwareError too_few_for_the_halo(const FramePlan& fp, const golden::Params& p, int span) {
+    const int halo = batch_halo(p);
     std::ostringstream os;
-    const auto machine = [&] {
-        os << fp.P << " PEs at " << span << " per line in " << golden::to_string(p.mode) << " mode";
-    };
-    os << "a batch holds at most " << cap << " line" << (cap == 1 ? "" : "s") << " (";
-    if (per > kMaxBatchLines) {
-        os << "the re-layout's one-byte row index, whatever --pes; ";
-        machine();
-        os << " would hold " << per << ")";
-    } else {
-        machine();
-        if (tiny) os << "; with the vote, fewer than 3 lines per batch run one line per batch";
-        if (H > kMaxBatchLines)
-            os << "; never more than " << kMaxBatchLines
-               << ", the re-layout's one-byte row index, whatever --pes";
-        os << ")";
+    os << "firmware: too few PEs for the lines the batches share: " << fp.P << " PEs hold "
+       << fp.lpb << " line(s) per batch, and a batch holds " << halo
+       << " line(s) either side of the ones it outputs (";
+    const char* sep = "";
+    if (p.vote) {
+        os << "the vote 1";
+        sep = ", ";
     }
-    if (H <= kMaxBatchLines)
-        os << ": needs --pes >= " << span * H << ", or a ROI of at most " << cap
-           << " lines (--roi)";
-    else if (cap < kMaxBatchLines)
-        os << ": use a ROI of at most " << cap << " lines (--roi), or of at most " << kMaxBatchLines
-           << " lines with --pes >= " << span * kMaxBatchLines;
-    else
-        os << ": use a ROI of at most " << kMaxBatchLines << " lines (--roi)";
+    if (p.agg_ry > 0) {
+        os << sep << "--agg-ry " << p.agg_ry;
+        sep = ", ";
+    }
+    if (p.kc > 0) os << sep << "the census radius " << p.census;
+    os << "), so a batch needs " << 2 * halo + 1 << " lines (use >= " << span * (2 * halo + 1)
+       << " PEs";
+    if (p.vote && p.agg_ry == 0 && p.kc == 0) os << ", --vote off";
+    os << ", or a ROI of at most " << fp.lpb << " lines)";
     // the next refusal, so that the advice is not half of what is needed
     if (p.kc > 0 && fp.roi.w > fp.P)
         os << "; --kc " << p.kc << " (census) also needs " << one_segment_limit(fp);
-    return os.str();
-}
-
-// The census needs the ROI's lines in one batch (the codes read lines y-r..y+r).
-FirmwareError census_not_one_batch(const FramePlan& fp, const golden::Params& p, int span,
-                                   bool tiny) {
-    std::ostringstream os;
-    os << "firmware: --kc " << p.kc << " (census) needs the ROI's " << fp.roi.h
-       << " lines in one batch (the codes read the lines y-" << p.census << "..y+" << p.census
-       << " of the ROI): " << one_batch_limit(fp, p, span, tiny);
     return FirmwareError(os.str());
 }
 
-// The batches of the ROI's H lines (fp.lpb lines per batch at most), the
-// most lines in one, the video segments, and the options that need all the
-// ROI's lines in one batch (or its width in one segment).
+// The batches of the ROI's H lines (fp.lpb lines per batch at most, the
+// halo's lines either side of an inner edge), the most lines in one, the
+// video segments, and the options that need the ROI's lines in one batch
+// (the one-line-per-batch mode) or its width in one segment.
 void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir, int span) {
     const int H = fp.roi.h;
     if (tiny) {
@@ -139,32 +129,18 @@ void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir,
     } else if (H <= fp.lpb) {
         fp.batches.push_back({0, H, 0, H});
     } else {
-        const bool overlap = p.vote;
-        const int stride = overlap ? fp.lpb - 2 : fp.lpb;
-        if (stride < 1) {
-            std::ostringstream os;
-            os << "too few PEs for the vote across batches: " << fp.P << " PEs hold " << fp.lpb
-               << " line(s) per batch, the vote needs 3 (use >= " << (bidir ? 6 : 3)
-               << " PEs, --vote off, or a ROI of at most " << fp.lpb << " lines)";
-            throw FirmwareError(os.str());
-        }
+        const int halo = fp.halo = batch_halo(p);
+        const int stride = fp.lpb - 2 * halo;
+        if (stride < 1) throw too_few_for_the_halo(fp, p, span);
         for (int o = 0; o < H; o += stride) {
             const int oe = std::min(H, o + stride);
-            const int first = overlap ? std::max(0, o - 1) : o;
-            const int last = overlap ? std::min(H, oe + 1) : oe;
+            const int first = std::max(0, o - halo);
+            const int last = std::min(H, oe + halo);
             fp.batches.push_back({first, last - first, o - first, oe - o});
         }
     }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (fp.roi.w + fp.P - 1) / fp.P;
-    if (p.agg_ry > 0 && (tiny || fp.batches.size() > 1)) {
-        std::ostringstream os;
-        os << "firmware: --agg-ry " << p.agg_ry << " (vertical window) needs the ROI's " << H
-           << " lines in one batch (the match cost of line y sums the lines y-" << p.agg_ry
-           << "..y+" << p.agg_ry << " of the ROI): " << one_batch_limit(fp, p, span, tiny);
-        throw FirmwareError(os.str());
-    }
-    if (p.kc > 0 && fp.batches.size() > 1) throw census_not_one_batch(fp, p, span, tiny);
     if (p.kc > 0 && fp.nseg > 1) {
         std::ostringstream os;
         os << "firmware: --kc " << p.kc << " (census) needs " << one_segment_limit(fp);
@@ -250,7 +226,8 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     // Too few lines per batch for the vote across batches: one line at a
     // time, every pointer table kept in the external memory.
     const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
-    if (p.kc > 0 && tiny) throw census_not_one_batch(fp, p, span, tiny);
+    // the census and the vertical window need batches of their halo (3 lines at least)
+    if ((p.kc > 0 || p.agg_ry > 0) && tiny) throw too_few_for_the_halo(fp, p, span);
     fp.f = detail::plan_forward_impl(p, roi.w, cfg, tiny, true);  // range and DP memory checks
     if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {

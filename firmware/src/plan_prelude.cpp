@@ -109,8 +109,8 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
 }
 
 // The frame's own constants: the machine, the ROI, the batches (dp.s
-// BATCH_LINES / BATCH_OUT: every batch but the last outputs BSTRIDE lines;
-// with BOVERLAP it also holds one line either side), the rows and the
+// BATCH_LINES / BATCH_OUT: every batch but the last outputs BSTRIDE lines
+// and holds BOVERLAP more either side, the halo), the rows and the
 // re-layout.
 void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     const bool multi = !fp.f.tiny && fp.batches.size() > 1;
@@ -122,7 +122,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"NSEG", fp.nseg},
                  {"LPB", fp.lpb},
                  {"BSTRIDE", multi ? fp.batches[0].out_count : fp.roi.h},
-                 {"BOVERLAP", multi && fp.batches[1].out_first == 1 ? 1 : 0},
+                 {"BOVERLAP", multi ? fp.halo : 0},
                  {"HBMAX", fp.hbmax},
                  {"INL", fp.inl},
                  {"INR", fp.inr},

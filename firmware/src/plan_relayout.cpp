@@ -30,12 +30,16 @@ void for_each_receiver(const FramePlan& fp, int g, Take&& take) {
 // Skewed rows (docs/firmware.md, section 5): when the ring holds the lines'
 // PEs and a video row per line shifted by `span` lanes per line, every line's
 // items share one displacement per pixel: W rounds of at most ~W/2 hops
-// instead of rounds over the span of all lines. The lines sit so that the
+// instead of rounds over the span of all lines (not for census frames in
+// several batches). The lines sit so that the
 // input displacements d = base + kind - x are centred on 0, the output
 // displacements likewise (skew_out).
 void plan_skew(FramePlan& fp, int span) {
     Relayout& rl = fp.rl;
     if (fp.nseg != 1) return;
+    // the census on skewed rows clamps its lines at HBMAX - 1 (assembly-time
+    // hop counts, census.inc CENSUS_SKEWED), wrong for a shorter last batch
+    if (fp.f.census > 0 && fp.batches.size() > 1) return;
     const int P = fp.P, W = seg_width(fp, 0), H = fp.hbmax;
     int lo = INT_MAX, hi = INT_MIN;  // kind - x over the input items
     for_each_receiver(fp, 0, [&](int kind, int a, int n) {

@@ -1,7 +1,7 @@
-// The planner's refusals name the true limit (issue 30, item 4): the
-// options that need the ROI's lines in one batch (--agg-ry, --kc) say what a
-// batch holds on the machine (P / span lines, never more than 255: the
-// re-layout's one-byte row index) and what would hold the ROI, and that
+// The planner's refusals name the true limit (issue 30, item 4): batches
+// too short for the lines they share (the halo of the vote, --agg-ry and
+// --kc) say what a batch holds on the machine (P / span lines, never more
+// than 255: the re-layout's one-byte row index) and what it needs, and that
 // advice is checked to plan; the census's one video segment; the local
 // memory rows as lower bounds ("at least"). Exact messages, from
 // fw::plan_frame on the parameters, ROI and machine of each case.
@@ -42,82 +42,73 @@ g::Params census(g::Mode mode, int D) {
     return p;
 }
 
-const char* const kAggry2 =
-    "firmware: --agg-ry 2 (vertical window) needs the ROI's 288 lines in one batch (the match "
-    "cost of line y sums the lines y-2..y+2 of the ROI): ";
-
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_names_the_255_line_batch_not_the_pes) {
-    // tsukuba's 384x288 at the quality preset: 1,024 PEs would hold 512
-    // lines, so the PE count is not the limit (it said "needs 576 PEs, have 1024")
+const char* const kTsukubaSegment =
+    "firmware: --kc 4 (census) needs the ROI's width in one video segment (a segment is 256 "
+    "pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI of at most 256 pixels "
+    "wide (--roi)";
+
+BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_takes_batches_and_names_the_segment) {
+    // tsukuba's 384x288 at the quality preset: more lines than a batch holds
+    // (at most 255, the re-layout's one-byte row index) now take batches
+    // sharing their halo; on 256 PEs the census's one video segment is the
+    // limit (it said "needs 576 PEs, have 256", then "use a ROI of at most
+    // 128 lines")
     const g::Roi tsukuba{0, 0, 384, 288};
-    BOOST_TEST(refusal(quality(16), tsukuba, 1024, 4096) ==
-               std::string(kAggry2) +
-                   "a batch holds at most 255 lines (the re-layout's one-byte row index, "
-                   "whatever --pes; 1024 PEs at 2 per line in joint mode would hold 512): use a "
-                   "ROI of at most 255 lines (--roi)");
-    // 256 PEs: both limits (it said "needs 576 PEs, have 256": 576 hold 255)
-    BOOST_TEST(
-        refusal(quality(16), tsukuba, 256, 4096) ==
-        std::string(kAggry2) +
-            "a batch holds at most 128 lines (256 PEs at 2 per line in joint mode; never "
-            "more than 255, the re-layout's one-byte row index, whatever --pes): use a ROI "
-            "of at most 128 lines (--roi), or of at most 255 lines with --pes >= 510; --kc 4 "
-            "(census) also needs the ROI's width in one video segment (a segment is 256 "
-            "pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI of at "
-            "most 256 pixels wide (--roi)");
-    // the advice plans: 255 lines on 510 PEs, 128 lines on 256
-    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 255}, 510, 4096) == "");
-    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 384, 256}, 1024, 4096) != "");
-    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 256, 128}, 256, 4096) == "");
+    BOOST_TEST(refusal(quality(16), tsukuba, 1024, 4096) == "");
+    BOOST_TEST(refusal(quality(16), tsukuba, 256, 4096) == kTsukubaSegment);
+    // the advice plans: 384 PEs (192 lines per batch, two batches)
+    BOOST_TEST(refusal(quality(16), tsukuba, 384, 4096) == "");
+    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 256, 288}, 256, 4096) == "");
 }
 
-BOOST_AUTO_TEST_CASE(too_few_pes_for_the_vertical_window_names_the_pes_needed) {
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 16) ==
-               "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
-               "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
-               "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
-               "most 8 lines (--roi)");
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 40) == "");
-    // wider than P: the census's segment too, so that the advice is whole
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
-               "firmware: --agg-ry 2 (vertical window) needs the ROI's 20 lines in one batch (the "
-               "match cost of line y sums the lines y-2..y+2 of the ROI): a batch holds at most 8 "
-               "lines (16 PEs at 2 per line in joint mode): needs --pes >= 40, or a ROI of at "
-               "most 8 lines (--roi); --kc 4 (census) also needs the ROI's width in one video "
-               "segment (a segment is 16 pixels, one per PE): the ROI is 30 wide; needs --pes >= "
-               "30, or a ROI of at most 16 pixels wide (--roi)");
+BOOST_AUTO_TEST_CASE(too_few_pes_for_the_halo_names_the_pes_needed) {
+    // quality: the vote's line, the window's 2, the census's 2 either side
+    BOOST_TEST(
+        refusal(quality(6), g::Roi{0, 0, 16, 20}, 16) ==
+        "firmware: too few PEs for the lines the batches share: 16 PEs hold 8 line(s) per batch, "
+        "and a batch holds 5 line(s) either side of the ones it outputs (the vote 1, "
+        "--agg-ry 2, the census radius 2), so a batch needs 11 lines (use >= 22 PEs, or a "
+        "ROI of at most 8 lines)");
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 22) == "");
     BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 8}, 16) == "");
-    // the one-line-per-batch mode (bidir, 4 PEs, the vote)
+    // wider than P: the census's segment too, so that the advice is whole
+    BOOST_TEST(
+        refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
+        "firmware: too few PEs for the lines the batches share: 16 PEs hold 8 line(s) per batch, "
+        "and a batch holds 5 line(s) either side of the ones it outputs (the vote 1, "
+        "--agg-ry 2, the census radius 2), so a batch needs 11 lines (use >= 22 PEs, or a "
+        "ROI of at most 8 lines); --kc 4 (census) also needs the ROI's width in one video "
+        "segment (a segment is 16 pixels, one per PE): the ROI is 30 wide; needs --pes >= "
+        "30, or a ROI of at most 16 pixels wide (--roi)");
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 30) == "");
+    // the one-line-per-batch mode (bidir, 4 PEs, the vote) does not take it
     g::Params t;
     t.agg_ry = 1;
     t.D = 4;
     BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 5}, 4) ==
-               "firmware: --agg-ry 1 (vertical window) needs the ROI's 5 lines in one batch (the "
-               "match cost of line y sums the lines y-1..y+1 of the ROI): a batch holds at most 2 "
-               "lines (4 PEs at 2 per line in bidir mode; with the vote, fewer than 3 lines per "
-               "batch run one line per batch): needs --pes >= 10, or a ROI of at most 2 lines "
-               "(--roi)");
+               "firmware: too few PEs for the lines the batches share: 4 PEs hold 2 line(s) per "
+               "batch, and "
+               "a batch holds 2 line(s) either side of the ones it outputs (the vote 1, --agg-ry "
+               "1), so a batch needs 5 lines (use >= 10 PEs, or a ROI of at most 2 lines)");
     BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 5}, 10) == "");
+    BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 7}, 10) == "");  // two batches of 5
     BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 2}, 4) == "");
 }
 
 BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_a_segment_hold) {
-    // single mode on 1,024 PEs: one PE per line, still at most 255 lines
-    BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 300}, 1024) ==
-               "firmware: --kc 4 (census) needs the ROI's 300 lines in one batch (the codes read "
-               "the lines y-2..y+2 of the ROI): a batch holds at most 255 lines (the re-layout's "
-               "one-byte row index, whatever --pes; 1024 PEs at 1 per line in single mode would "
-               "hold 1024): use a ROI of at most 255 lines (--roi)");
-    BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 255}, 1024, 2048) == "");
+    // single mode on 1,024 PEs: one PE per line, 255 lines per batch at most:
+    // batches
+    BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 300}, 1024, 2048) == "");
     // the one-line-per-batch mode in single mode: P / 1 lines, not 2 per line
     BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 2) ==
-               "firmware: --kc 4 (census) needs the ROI's 8 lines in one batch (the codes read "
-               "the lines y-2..y+2 of the ROI): a batch holds at most 2 lines (2 PEs at 1 per line "
-               "in single mode; with the vote, fewer than 3 lines per batch run one line per "
-               "batch): needs --pes >= 8, or a ROI of at most 2 lines (--roi)");
-    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 8) == "");
+               "firmware: too few PEs for the lines the batches share: 2 PEs hold 2 line(s) per "
+               "batch, and "
+               "a batch holds 3 line(s) either side of the ones it outputs (the vote 1, the "
+               "census radius 2), so a batch needs 7 lines (use >= 7 PEs, or a ROI of at most 2 "
+               "lines)");
+    BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 7) == "");
     BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 2}, 2) == "");
     // the width in one video segment
     BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 32) ==

@@ -74,13 +74,21 @@ g::Roi random_roi(std::mt19937& rng, int W, int H) {
     return roi;
 }
 
-// A random PE count the firmware accepts: with the census every line of a
-// batch needs its own PEs (no one-line-per-batch mode); joint needs 3 lines
-// per batch with the vote when the ROI is taller.
+// The lines a batch holds either side of the ones it outputs when the ROI
+// takes several batches: the vote's neighbour, the vertical window's lines
+// and the census's lines beyond them (docs/firmware.md, section 3).
+int halo_of(const g::Params& p) {
+    return (p.vote ? 1 : 0) + p.agg_ry + (p.kc > 0 ? p.census : 0);
+}
+
+// A random PE count the firmware accepts: with the census or the vertical
+// window a batch holds at least 2 * halo + 1 lines (no one-line-per-batch
+// mode); joint needs 3 lines per batch with the vote when the ROI is taller.
 int random_pes(std::mt19937& rng, const g::Params& p, const g::Roi& roi, bool census) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     const int span = p.mode == g::Mode::Single ? 1 : 2;
-    return census ? uni(std::max({2, roi.w, span * roi.h}), 48)
+    const int lines = std::min(roi.h, 2 * halo_of(p) + 1);
+    return census ? uni(std::max({2, roi.w, span * lines}), 48)
                   : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
 }
 
@@ -285,21 +293,36 @@ BOOST_AUTO_TEST_CASE(census_headline_and_range) {
     BOOST_TEST(refusal(p, roi).empty());
 }
 
-BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
+BOOST_AUTO_TEST_CASE(census_over_batches_needs_their_halo_and_one_segment) {
     isa::MachineConfig cfg;
     g::Params p;
     p.kc = 4;
     p.D = 8;
-    cfg.pes = 16;  // bidir: 8 lines per batch, the ROI has 12
+    std::mt19937 rng(6502);
+    const Frame fr = random_frame(rng, 20, 30, p.D);
+    // bidir, vote, census radius 2: 3 lines either side of a batch's output.
+    // 16 PEs: 8 lines per batch, 2 output (the second batch starts at ROI
+    // line 0, less than the halo before its output); 24 PEs: 12 and 6;
+    // 14 PEs, the fewest: 7 and 1.
+    for (const int P : {16, 24, 14}) {
+        cfg.pes = uint32_t(P);
+        const fw::FramePlan fp = fw::plan_frame(p, g::Roi{2, 3, 14, 25}, cfg);
+        BOOST_TEST(fp.batches.size() > 2u);
+        BOOST_TEST_CONTEXT("census over batches, P=" << P) {
+            check_frame(p, fr, g::Roi{2, 3, 14, 25}, P);
+        }
+    }
+    cfg.pes = 12;  // 6 lines per batch: too few for the halo
     try {
-        fw::plan_frame(p, g::Roi{0, 0, 16, 12}, cfg);
-        BOOST_ERROR("census over two batches was accepted");
+        fw::plan_frame(p, g::Roi{0, 0, 12, 12}, cfg);
+        BOOST_ERROR("census in batches shorter than their halo was accepted");
     } catch (const fw::FirmwareError& e) {
         BOOST_TEST(std::string(e.what()) ==
-                   "firmware: --kc 4 (census) needs the ROI's 12 lines in one batch (the codes "
-                   "read the lines y-2..y+2 of the ROI): a batch holds at most 8 lines (16 PEs "
-                   "at 2 per line in bidir mode): needs --pes >= 24, or a ROI of at most 8 lines "
-                   "(--roi)");
+                   "firmware: too few PEs for the lines the batches share: 12 PEs hold 6 line(s) "
+                   "per batch, "
+                   "and a batch holds 3 line(s) either side of the ones it outputs (the vote 1, "
+                   "the census radius 2), so a batch needs 7 lines (use >= 14 PEs, or a ROI of "
+                   "at most 6 lines)");
     }
     cfg.pes = 32;  // a 40-wide ROI needs two video segments
     try {
@@ -313,13 +336,63 @@ BOOST_AUTO_TEST_CASE(census_needs_one_batch_and_one_segment) {
     }
     cfg.pes = 2;  // the one-line-per-batch mode
     p.mode = g::Mode::Single;
+    p.D = 2;
     try {
-        fw::plan_frame(p, g::Roi{0, 0, 8, 8}, cfg);
+        fw::plan_frame(p, g::Roi{0, 0, 2, 8}, cfg);
         BOOST_ERROR("census in the one-line-per-batch mode was accepted");
     } catch (const fw::FirmwareError& e) {
-        BOOST_TEST(std::string(e.what()).find("--kc 4 (census) needs the ROI's 8 lines in one "
-                                              "batch") != std::string::npos);
+        BOOST_TEST(std::string(e.what()) ==
+                   "firmware: too few PEs for the lines the batches share: 2 PEs hold 2 line(s) "
+                   "per batch, "
+                   "and a batch holds 3 line(s) either side of the ones it outputs (the vote 1, "
+                   "the census radius 2), so a batch needs 7 lines (use >= 7 PEs, or a ROI of "
+                   "at most 2 lines)");
     }
+}
+
+BOOST_AUTO_TEST_CASE(halo_batches_random_frames) {
+    // The census and the vertical window over batches: random options,
+    // modes and ROIs, each on a PE count that takes at least two batches of
+    // at least 2 * halo + 1 lines (the halo either side of a batch's output).
+    std::mt19937 rng(1234);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    int clamped = 0;
+    for (int it = 0; it < 24; ++it) {
+        const int W = uni(4, 24), Hi = uni(10, 40);
+        g::Roi roi = random_roi(rng, W, Hi);
+        roi.h = std::max(roi.h, std::min(Hi - roi.y0, 10));
+        const bool census = uni(0, 1) == 0;
+        g::Params p = census ? random_census_params(rng, roi.w) : random_option_params(rng, roi.w);
+        p.agg_ry = census && uni(0, 1) == 0 ? 0 : uni(1, 2);
+        p.agg_rx = uni(0, 2);
+        p.vote = uni(0, 3) != 0;
+        if (p.kc * 8 > 1000) p.kc = 50;
+        auto wm = [&] {
+            return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
+                   (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
+        };
+        while (wm() > 30000 && p.km > 1) p.km /= 2;
+        while (wm() > 30000 && p.kc > 1) p.kc /= 2;
+        if (wm() > 30000) p.agg_ry = 1;
+        if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+        const int span = p.mode == g::Mode::Single ? 1 : 2, halo = halo_of(p);
+        const int lo = 2 * halo + 1, hi = std::min(roi.h - 1, 3 * halo + 3);
+        if (lo > hi) continue;
+        const int lines = uni(lo, hi);  // lines per batch < ROI lines: batches
+        const int P = std::max(span * lines, census ? roi.w : 2);
+        if (P / span >= roi.h) continue;
+        isa::MachineConfig cfg;
+        cfg.pes = static_cast<uint32_t>(P);
+        cfg.mem_bytes = 2048;
+        const fw::FramePlan fp = fw::plan_frame(p, roi, cfg);
+        BOOST_TEST(fp.batches.size() > 1u);
+        if (P / span - 2 * halo < halo) ++clamped;  // a batch starts at ROI line 0 late
+        const Frame fr = random_frame(rng, W, Hi, p.D);
+        BOOST_TEST_CONTEXT(options_context(p, roi, P) << " halo=" << halo) {
+            check_frame(p, fr, roi, P, nullptr, 2048);
+        }
+    }
+    BOOST_TEST(clamped > 0);
 }
 
 BOOST_AUTO_TEST_CASE(firmware_part_of_every_tradeoff_variant_runs) {
@@ -544,8 +617,8 @@ BOOST_AUTO_TEST_CASE(census_on_skewed_rows) {
 BOOST_AUTO_TEST_CASE(vertical_window_random_frames) {
     // SPEC A.9 vertical aggregation (agg-ry 1..3) over random frames: with and
     // without the horizontal window, the census and bt, every mode, the
-    // ROI's lines in one batch (refused otherwise), video segments without
-    // the census; both the one-byte and the two-byte row sums.
+    // ROI's lines in one batch or in batches of the halo, video segments
+    // without the census; both the one-byte and the two-byte row sums.
     std::mt19937 rng(8086);
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     int h8 = 0, h16 = 0;
@@ -567,8 +640,9 @@ BOOST_AUTO_TEST_CASE(vertical_window_random_frames) {
         if (wm() > 30000) p.agg_ry = 1;
         if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
         const int span = p.mode == g::Mode::Single ? 1 : 2;
+        const int lines = std::min(roi.h, 2 * halo_of(p) + 1);  // batches of the halo
         const int P =
-            uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * roi.h, census ? roi.w : 2}), 48);
+            uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * lines, census ? roi.w : 2}), 48);
         isa::MachineConfig cfg;
         cfg.pes = static_cast<uint32_t>(P);
         cfg.mem_bytes = 2048;  // the bt bounds of the window copies need more than 1 KB
@@ -629,20 +703,28 @@ BOOST_AUTO_TEST_CASE(vertical_window_grid_headline_and_refusals) {
     BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).find("--agg-ry") != std::string::npos);
     r.agg_ry = 1;  // 22,950
     BOOST_TEST(refusal(r, g::Roi{0, 0, 64, 4}).empty());
-    // the lines of the window must be in one batch
+    // the lines of the window over batches: the halo is the vote's line, the
+    // window's 2 and the census's 2 (joint, 2 PEs per line)
     g::Params b = g::preset("quality");
     b.agg_ry = 2;
     b.D = 8;
     isa::MachineConfig small;
-    small.pes = 16;
+    small.pes = 20;
     try {
         fw::plan_frame(b, g::Roi{0, 0, 16, 12}, small);
-        BOOST_ERROR("a vertical window over two batches was accepted");
+        BOOST_ERROR("a vertical window in batches shorter than their halo was accepted");
     } catch (const fw::FirmwareError& e) {
-        BOOST_TEST(std::string(e.what()).find("--agg-ry 2 (vertical window) needs the ROI's 12 "
-                                              "lines in one batch") != std::string::npos,
-                   e.what());
+        BOOST_TEST(
+            std::string(e.what()) ==
+                "firmware: too few PEs for the lines the batches share: 20 PEs hold 10 line(s) per "
+                "batch, and a batch holds 5 line(s) either side of the ones it outputs "
+                "(the vote 1, --agg-ry 2, the census radius 2), so a batch needs 11 lines "
+                "(use >= 22 PEs, or a ROI of at most 10 lines)",
+            e.what());
     }
+    small.pes = 22;
+    const Frame tall = random_frame(rng, 24, 20, b.D);
+    check_frame(b, tall, g::Roi{2, 1, 16, 18}, 22);
     g::Params t;  // the one-line-per-batch mode (bidir, 4 PEs, the vote)
     t.agg_ry = 1;
     t.D = 4;

@@ -185,9 +185,10 @@ struct FramePlan {
     ForwardPlan f;
     golden::Roi roi;
     int P = 0;
-    int lpb = 0;                    // lines per batch
-    int hbmax = 0;                  // most lines in one batch
-    int nseg = 0;                   // segments of P pixels per ROI line
+    int lpb = 0;    // lines per batch
+    int hbmax = 0;  // most lines in one batch
+    int halo = 0;   // lines a batch holds either side of its output (several batches)
+    int nseg = 0;   // segments of P pixels per ROI line
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
     int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
@@ -209,9 +210,9 @@ struct FramePlan {
 // Spare forces the spare layout (FirmwareError where it is not feasible).
 enum class SpillLayout { Cheaper, External, Spare };
 
-// Plans a frame: the forward plan, batches (overlapping by one line at inner
-// edges when the vote is on), video rows, memory, re-layout. FirmwareError
-// when the set cannot run on `cfg` (what is needed vs available).
+// Plans a frame: the forward plan, batches (overlapping at inner edges by
+// the halo: the vote's line, the vertical window's and the census's), video rows, memory,
+// re-layout. FirmwareError when the set cannot run on `cfg` (what is needed vs available).
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
                      SpillLayout layout = SpillLayout::Cheaper);
 
