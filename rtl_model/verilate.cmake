@@ -20,8 +20,9 @@ set(IMAP_RTL_VERIF_FILES imap_board.sv imap_cp_monitor.sv imap_tb.sv)
 # (mut with FST tracing compiled in: waves of the window before a failure).
 function(imap_rtl_verilate target prefix hdl verif pes mem ext variant assert coverage)
   set(extra "")
-  set(args -I${hdl} -O3 --x-assign fast --x-initial 0 -Wall -Wno-fatal -Wno-DECLFILENAME
-      -Wno-UNUSEDSIGNAL -Wno-UNUSEDPARAM -Wno-BLKSEQ -Wno-VARHIDDEN)
+  # (-Werror-USERFATAL: an elaboration check of the design stops the build)
+  set(args -I${hdl} -O3 --x-assign fast --x-initial 0 -Wall -Wno-fatal -Werror-USERFATAL
+      -Wno-DECLFILENAME -Wno-UNUSEDSIGNAL -Wno-UNUSEDPARAM -Wno-BLKSEQ -Wno-VARHIDDEN)
   if(variant STREQUAL "vcd")
     set(extra TRACE TRACE_STRUCTS)
   elseif(variant STREQUAL "fst")

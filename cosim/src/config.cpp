@@ -105,6 +105,9 @@ const std::vector<Mutant>& mutants() {
         {13, "xld_mask", "xld: rows written on masked PEs too (ignores the mask)"},
         {14, "xfer_all_pes", "xld / xst: the cost counts every PE, not the active ones"},
         {15, "xst_mask", "xst: the external memory of masked PEs written too"},
+        {16, "bank_bypass",
+         "PE memory: a byte written at a row read's edge reads as the bank's old byte (the "
+         "banks' bypass off)"},
     };
     return m;
 }

@@ -12,7 +12,7 @@ set output outfile
 set termoption noenhanced
 set encoding utf8
 set style textbox opaque noborder
-set title "Energy per frame vs modeled frame time, Pareto-optimal points circled (imapsim sweep, model tlm)\nsynthetic scene; roi_size=128x128, D=64, mode=bidir\npoint size: area (yosys cells), largest 3.56 Mcells"
+set title "Energy per frame vs modeled frame time, Pareto-optimal points circled (imapsim sweep, model tlm)\nsynthetic scene; roi_size=128x128, D=64, mode=bidir\npoint size: area (yosys cells), largest 3.52 Mcells"
 set xlabel "modeled frame time (ms)"
 set ylabel "energy per frame (uJ; [A] energy model)"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd" lt 1, lc rgb "#eeeeee" lt 1

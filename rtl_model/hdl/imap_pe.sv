@@ -66,6 +66,13 @@ module imap_pe
   localparam int IW = $clog2(DEPTH > 1 ? DEPTH : 2);
   localparam int AI = AW > 3 ? AW : 3;  // byte address width inside (at least the bank bits)
 
+`ifndef SYNTHESIS
+  // the memory is eight byte banks (bank0 .. bank7), one per byte of a row
+  if (XROWS != 8) begin : g_xrows
+    $fatal(1, "imap_pe: XROWS is %0d; the memory's eight byte banks need 8", XROWS);
+  end
+`endif
+
   logic [7:0] regs[NREGS] /*verilator public_flat_rw*/;
   // the local memory: bank k holds the bytes at addresses k, k + 8, k + 16, ...
   logic [7:0] bank0[DEPTH] /*verilator public_flat_rw*/;
@@ -103,7 +110,6 @@ module imap_pe
   logic [AI-1:0] mra, wad;
   logic [7:0] wen;
   logic [63:0] wdat;
-  logic [IW-1:0] rb0, wb0;  // the bank index of the row's first byte (read / write)
   logic [7:0] wenb;  // the write enables in bank order (bank k: wenb[k])
   logic [63:0] wdatb;  // the write bytes in bank order
   logic [IW-1:0] rx, wx_;  // one bank's read / write index
@@ -126,15 +132,21 @@ module imap_pe
     row_q = (rowm >> {rlo_q, 3'b000}) | (rowm << (7'd64 - {1'b0, rlo_q, 3'b000}));
   end
 
+  // The index in bank k of the row that starts at byte address x: the
+  // row's bytes x .. x+7 are one per bank, byte a in bank a mod 8 at a / 8.
+  function automatic [IW-1:0] bank_index(input [AI-1:0] x, input [2:0] k);
+    bank_index = IW'(x >> 3) + IW'(k < x[2:0]);
+  endfunction
+
   // One bank's ports at this edge (K: its number, B: its array). The read
   // comes before the write (the RAM reads the byte as the edge found it; 'x
   // on a read of the byte being written: the bypass register gives it).
 `define IMAP_PE_BANK(K, B) \
-  rx = rb0 + IW'(3'(K) < mra[2:0]); \
-  wx_ = wb0 + IW'(3'(K) < wad[2:0]); \
+  rx = bank_index(mra, 3'(K)); \
+  wx_ = bank_index(wad, 3'(K)); \
   if (mre) begin \
     bq[K*8+:8] <= (wenb[K] && wx_ == rx) ? 8'hxx : B[rx]; \
-    byp[K] <= wenb[K] && wx_ == rx; \
+    byp[K] <= wenb[K] && wx_ == rx && !`IMAP_MUT(16); \
     bd[K*8+:8] <= wdatb[K*8+:8]; \
   end \
   if (wenb[K]) B[wx_] = wdatb[K*8+:8];
@@ -152,13 +164,13 @@ module imap_pe
     ma = '0;
     xa = '0;
     {mre, mra, wad, wen, wdat} = '0;
-    {rb0, wb0, wenb, wdatb, rx, wx_} = '0;
+    {wenb, wdatb, rx, wx_} = '0;
 `ifndef SYNTHESIS
     // a_pe_preload, memory part: a row byte read at the last edge equals the
     // bank's byte as that edge left it (before this edge's writes)
     if (chk_q) begin
       for (int k = 0; k < 8; k++) begin
-        chk_x[k] = IW'(chk_ra >> 3) + IW'(3'(k) < chk_ra[2:0]);
+        chk_x[k] = bank_index(chk_ra, 3'(k));
         chk_in[k] = 32'(chk_ra) + 32'(3'(3'(k) - chk_ra[2:0])) < 32'(MEM_BYTES);
       end
       pre_ok = 1'b1;
@@ -385,12 +397,9 @@ module imap_pe
       if (mre || wen != 8'h00) begin
         if (mre) rlo_q <= mra[2:0];
         // the row's bytes in bank order: byte i goes to bank (wad + i) mod 8
-        rb0 = IW'(mra >> 3);
-        wb0 = IW'(wad >> 3);
         // (rotate left by wad mod 8 bytes; a shift by 8 / 64 gives 0)
         wenb = (wen << wad[2:0]) | (wen >> (4'd8 - {1'b0, wad[2:0]}));
         wdatb = (wdat << {wad[2:0], 3'b000}) | (wdat >> (7'd64 - {1'b0, wad[2:0], 3'b000}));
-        /* verilator lint_off CMPCONST */  // (K < x is constant for the last bank)
         `IMAP_PE_BANK(0, bank0)
         `IMAP_PE_BANK(1, bank1)
         `IMAP_PE_BANK(2, bank2)
@@ -399,7 +408,6 @@ module imap_pe
         `IMAP_PE_BANK(5, bank5)
         `IMAP_PE_BANK(6, bank6)
         `IMAP_PE_BANK(7, bank7)
-        /* verilator lint_on CMPCONST */
 `ifndef SYNTHESIS
         // every byte written lies inside the memory (the CP faults a
         // transfer or an address past the end before any byte is written)
@@ -427,3 +435,5 @@ module imap_pe
   end
 
 endmodule
+
+`undef IMAP_PE_BANK
