@@ -72,15 +72,6 @@ using detail::ceil_div;
 // batch = min(P / span, this).
 constexpr int kMaxBatchLines = 255;
 
-// The census's ROI width in one video segment (the codes read pixels x-r..x+r).
-std::string one_segment_limit(const FramePlan& fp) {
-    std::ostringstream os;
-    os << "the ROI's width in one video segment (a segment is " << fp.P
-       << " pixels, one per PE): the ROI is " << fp.roi.w << " wide; needs --pes >= " << fp.roi.w
-       << ", or a ROI of at most " << fp.P << " pixels wide (--roi)";
-    return os.str();
-}
-
 // The lines a batch holds beyond the ones it outputs, on each side at an
 // inner batch edge (the halo): an output line y needs the paths of y -+ 1
 // for the vote, their match costs the window's lines y -+ 1 -+ agg_ry, and
@@ -112,16 +103,12 @@ FirmwareError too_few_for_the_halo(const FramePlan& fp, const golden::Params& p,
        << " PEs";
     if (p.vote && p.agg_ry == 0 && p.kc == 0) os << ", --vote off";
     os << ", or a ROI of at most " << fp.lpb << " lines)";
-    // the next refusal, so that the advice is not half of what is needed
-    if (p.kc > 0 && fp.roi.w > fp.P)
-        os << "; --kc " << p.kc << " (census) also needs " << one_segment_limit(fp);
     return FirmwareError(os.str());
 }
 
 // The batches of the ROI's H lines (fp.lpb lines per batch at most, the
 // halo's lines either side of an inner edge), the most lines in one, the
-// video segments, and the options that need the ROI's lines in one batch
-// (the one-line-per-batch mode) or its width in one segment.
+// video segments; the census's last segment at least r pixels wide.
 void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir, int span) {
     const int H = fp.roi.h;
     if (tiny) {
@@ -141,9 +128,17 @@ void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir,
     }
     for (const Batch& b : fp.batches) fp.hbmax = std::max(fp.hbmax, b.lines);
     fp.nseg = (fp.roi.w + fp.P - 1) / fp.P;
-    if (p.kc > 0 && fp.nseg > 1) {
+    // the census's codes at a segment's edges read the pixels x -+ r of the
+    // segments either side; a last segment narrower than r would need those
+    // clamped into the ROI within the one before it
+    const int last = fp.roi.w - (fp.nseg - 1) * fp.P;
+    if (p.kc > 0 && fp.nseg > 1 && last < p.census) {
         std::ostringstream os;
-        os << "firmware: --kc " << p.kc << " (census) needs " << one_segment_limit(fp);
+        os << "firmware: --kc " << p.kc << " (census) over " << fp.nseg << " video segments of "
+           << fp.P << " pixels needs the last one at least " << p.census
+           << " pixels wide (the census radius): the ROI is " << fp.roi.w
+           << " wide, the last segment " << last << "; use a ROI width of " << (fp.nseg - 1) * fp.P
+           << " or at least " << (fp.nseg - 1) * fp.P + p.census << " (--roi), or other --pes";
         throw FirmwareError(os.str());
     }
 }
@@ -171,7 +166,9 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     if (fp.inl + 2 * fp.hbmax <= mem) {
         fp.inr = fp.inl + fp.hbmax;
         end = std::max(end, fp.inl + 2 * fp.hbmax);
-    } else if (fp.inl + fp.hbmax <= mem) {
+    } else if (fp.inl + fp.hbmax <= mem && !(f.census > 0 && fp.nseg > 1)) {
+        // (census over video segments: both images' rows at once; the
+        // one-image-at-a-time input is not run with the segments' edges)
         fp.split_in = true;
         fp.inr = fp.inl;
         end = std::max(end, fp.inl + fp.hbmax);
@@ -184,12 +181,17 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
         const int rows = fp.split_in ? 1 : 2;
         fp.cinl = f.agg > 0 ? fp.inl + rows * fp.hbmax : std::max(f.preg, fp.inl + rows * fp.hbmax);
         fp.cinr = fp.split_in ? fp.cinl : fp.cinl + fp.hbmax;
-        if (fp.cinl + rows * fp.hbmax > mem)
-            throw rows_do_not_fit(fp.cinl + rows * fp.hbmax, "the census code rows", mem);
-        end = std::max(end, fp.cinl + rows * fp.hbmax);
+        // several video segments: 6 bytes beside the code rows take the
+        // pixels x -+ r of the segments either side (census.inc, CENSUS_ROW)
+        const int scr = fp.nseg > 1 ? 6 : 0;
+        fp.cscr = fp.cinl + rows * fp.hbmax;
+        if (fp.cinl + rows * fp.hbmax + scr > mem)
+            throw rows_do_not_fit(fp.cinl + rows * fp.hbmax + scr, "the census code rows", mem);
+        end = std::max(end, fp.cinl + rows * fp.hbmax + scr);
     }
     if (f.agg > 0) {
-        const int rows_end = f.census > 0 ? fp.cinr + fp.hbmax : fp.inr + fp.hbmax;
+        const int rows_end =
+            f.census > 0 ? fp.cinr + fp.hbmax + (fp.nseg > 1 ? 6 : 0) : fp.inr + fp.hbmax;
         if (rows_end > f.agg_src) {
             std::ostringstream os;
             os << "does not fit: --agg-rx " << f.agg << " needs at least "

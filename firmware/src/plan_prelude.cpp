@@ -130,6 +130,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"SPLIT_IN", fp.split_in ? 1 : 0},
                  {"CINL", fp.cinl},
                  {"CINR", fp.cinr},
+                 {"CSCR", fp.cscr},
                  {"RMOD", fp.rl.modular ? 1 : 0},
                  {"BP", fp.rl.base},
                  {"UR", fp.rl.ur},

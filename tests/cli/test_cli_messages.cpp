@@ -68,19 +68,17 @@ BOOST_AUTO_TEST_CASE(limits_name_what_they_depend_on) {
                        "left image '/nonexistent/l.png': cannot read (no such file)");
 }
 
-// Issue 30, item 4: the quality preset on a full Middlebury scene (288
-// lines) is not refused for the lines (it said "needs 576 PEs, have 1024",
-// then "a batch holds at most 255 lines"): tall ROIs take batches sharing
-// their halo. On 256 PEs the census's video segment is the limit, and the
-// message names it alone.
-BOOST_AUTO_TEST_CASE(a_full_scene_on_256_pes_names_the_census_segment) {
-    const std::string scene = std::string(IMAP_SHARED_DATA) + "/middlebury/tsukuba";
-    const Result r = expect_input_error(
-        "run --model core --preset quality --mem-bytes 4096 --pes 256 --scene " + scene,
-        "imapsim: error: firmware: --kc 4 (census) needs the ROI's width in one video segment (a "
-        "segment is 256 pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI "
-        "of at most 256 pixels wide (--roi)\n");
-    BOOST_TEST(!has(r, "lines"), r.out);
+// Issue 30, item 4: the census over video segments refuses only a last
+// segment narrower than its radius, and says which widths run.
+BOOST_AUTO_TEST_CASE(a_census_roi_with_a_narrow_last_segment_names_it) {
+    expect_input_error("run --model core --kc 4 --mode bidir --size 33x12 --D 8 --pes 32",
+                       "imapsim: error: firmware: --kc 4 (census) over 2 video segments of 32 "
+                       "pixels needs the last one at least 2 pixels wide (the census radius): the "
+                       "ROI is 33 wide, the last segment 1; use a ROI width of 32 or at least 34 "
+                       "(--roi), or other --pes\n");
+    const Result r = run("run --model core --kc 4 --mode bidir --size 34x12 --D 8 --pes 32");
+    BOOST_TEST(r.code == 0, r.out);
+    BOOST_TEST(has(r, "bit-exact vs golden: yes"), r.out);
 }
 
 BOOST_AUTO_TEST_CASE(help_says_what_no_command_does_and_the_exit_codes) {

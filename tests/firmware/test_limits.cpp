@@ -2,7 +2,7 @@
 // too short for the lines they share (the halo of the vote, --agg-ry and
 // --kc) say what a batch holds on the machine (P / span lines, never more
 // than 255: the re-layout's one-byte row index) and what it needs, and that
-// advice is checked to plan; the census's one video segment; the local
+// advice is checked to plan; the census's last video segment; the local
 // memory rows as lower bounds ("at least"). Exact messages, from
 // fw::plan_frame on the parameters, ROI and machine of each case.
 #define BOOST_TEST_MODULE firmware_limits
@@ -44,23 +44,15 @@ g::Params census(g::Mode mode, int D) {
 
 }  // namespace
 
-const char* const kTsukubaSegment =
-    "firmware: --kc 4 (census) needs the ROI's width in one video segment (a segment is 256 "
-    "pixels, one per PE): the ROI is 384 wide; needs --pes >= 384, or a ROI of at most 256 pixels "
-    "wide (--roi)";
-
-BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_takes_batches_and_names_the_segment) {
+BOOST_AUTO_TEST_CASE(a_full_middlebury_roi_takes_batches_and_segments) {
     // tsukuba's 384x288 at the quality preset: more lines than a batch holds
-    // (at most 255, the re-layout's one-byte row index) now take batches
-    // sharing their halo; on 256 PEs the census's one video segment is the
-    // limit (it said "needs 576 PEs, have 256", then "use a ROI of at most
-    // 128 lines")
+    // (at most 255, the re-layout's one-byte row index) take batches sharing
+    // their halo, a line wider than P video segments (it said "needs 576
+    // PEs, have 1024", then "use a ROI of at most 128 lines", then "needs
+    // --pes >= 384")
     const g::Roi tsukuba{0, 0, 384, 288};
-    BOOST_TEST(refusal(quality(16), tsukuba, 1024, 4096) == "");
-    BOOST_TEST(refusal(quality(16), tsukuba, 256, 4096) == kTsukubaSegment);
-    // the advice plans: 384 PEs (192 lines per batch, two batches)
-    BOOST_TEST(refusal(quality(16), tsukuba, 384, 4096) == "");
-    BOOST_TEST(refusal(quality(16), g::Roi{0, 0, 256, 288}, 256, 4096) == "");
+    for (const int P : {1024, 512, 384, 256})
+        BOOST_TEST(refusal(quality(16), tsukuba, P, 4096) == "", "P=" << P);
 }
 
 BOOST_AUTO_TEST_CASE(too_few_pes_for_the_halo_names_the_pes_needed) {
@@ -73,16 +65,8 @@ BOOST_AUTO_TEST_CASE(too_few_pes_for_the_halo_names_the_pes_needed) {
         "ROI of at most 8 lines)");
     BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 20}, 22) == "");
     BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 16, 8}, 16) == "");
-    // wider than P: the census's segment too, so that the advice is whole
-    BOOST_TEST(
-        refusal(quality(6), g::Roi{0, 0, 30, 20}, 16) ==
-        "firmware: too few PEs for the lines the batches share: 16 PEs hold 8 line(s) per batch, "
-        "and a batch holds 5 line(s) either side of the ones it outputs (the vote 1, "
-        "--agg-ry 2, the census radius 2), so a batch needs 11 lines (use >= 22 PEs, or a "
-        "ROI of at most 8 lines); --kc 4 (census) also needs the ROI's width in one video "
-        "segment (a segment is 16 pixels, one per PE): the ROI is 30 wide; needs --pes >= "
-        "30, or a ROI of at most 16 pixels wide (--roi)");
-    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 30) == "");
+    // wider than P: video segments
+    BOOST_TEST(refusal(quality(6), g::Roi{0, 0, 30, 20}, 22) == "");
     // the one-line-per-batch mode (bidir, 4 PEs, the vote) does not take it
     g::Params t;
     t.agg_ry = 1;
@@ -97,7 +81,7 @@ BOOST_AUTO_TEST_CASE(too_few_pes_for_the_halo_names_the_pes_needed) {
     BOOST_TEST(refusal(t, g::Roi{0, 0, 16, 2}, 4) == "");
 }
 
-BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_a_segment_hold) {
+BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_its_last_segment_need) {
     // single mode on 1,024 PEs: one PE per line, 255 lines per batch at most:
     // batches
     BOOST_TEST(refusal(census(g::Mode::Single, 8), g::Roi{0, 0, 64, 300}, 1024, 2048) == "");
@@ -110,13 +94,15 @@ BOOST_AUTO_TEST_CASE(the_census_names_what_a_batch_and_a_segment_hold) {
                "lines)");
     BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 8}, 7) == "");
     BOOST_TEST(refusal(census(g::Mode::Single, 2), g::Roi{0, 0, 2, 2}, 2) == "");
-    // the width in one video segment
-    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 32) ==
-               "firmware: --kc 4 (census) needs the ROI's width in one video segment (a segment "
-               "is 32 pixels, one per PE): the ROI is 40 wide; needs --pes >= 40, or a ROI of at "
-               "most 32 pixels wide (--roi)");
-    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 40) == "");
-    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 32, 4}, 32) == "");
+    // video segments: the last one at least r pixels wide, and the advice plans
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 40, 4}, 32) == "");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 65, 4}, 32) ==
+               "firmware: --kc 4 (census) over 3 video segments of 32 pixels needs the last one "
+               "at least 2 pixels wide (the census radius): the ROI is 65 wide, the last segment "
+               "1; use a ROI width of 64 or at least 66 (--roi), or other --pes");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 64, 4}, 32) == "");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 66, 4}, 32) == "");
+    BOOST_TEST(refusal(census(g::Mode::Bidir, 8), g::Roi{0, 0, 65, 4}, 33) == "");
 }
 
 BOOST_AUTO_TEST_CASE(the_rows_name_a_lower_bound_of_the_local_memory) {

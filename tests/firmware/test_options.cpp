@@ -4,6 +4,7 @@
 // message that names them (never a wrong map).
 #define BOOST_TEST_MODULE firmware_options
 #include <boost/test/unit_test.hpp>
+#include <tuple>
 
 #include "fw_test_util.hpp"
 #include "imap/golden/estimate.hpp"
@@ -81,14 +82,22 @@ int halo_of(const g::Params& p) {
     return (p.vote ? 1 : 0) + p.agg_ry + (p.kc > 0 ? p.census : 0);
 }
 
+// The census's video segments: a ROI wider than P needs its last segment at
+// least r pixels wide; P grows to the ROI's width where it is not.
+int census_segments_ok(const g::Params& p, const g::Roi& roi, int P) {
+    const int last = roi.w - (roi.w - 1) / P * P;
+    return roi.w > P && last < p.census ? std::max(P, roi.w) : P;
+}
+
 // A random PE count the firmware accepts: with the census or the vertical
 // window a batch holds at least 2 * halo + 1 lines (no one-line-per-batch
-// mode); joint needs 3 lines per batch with the vote when the ROI is taller.
+// mode); joint needs 3 lines per batch with the vote when the ROI is taller;
+// the census takes video segments with a last one of at least r pixels.
 int random_pes(std::mt19937& rng, const g::Params& p, const g::Roi& roi, bool census) {
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     const int span = p.mode == g::Mode::Single ? 1 : 2;
     const int lines = std::min(roi.h, 2 * halo_of(p) + 1);
-    return census ? uni(std::max({2, roi.w, span * lines}), 48)
+    return census ? census_segments_ok(p, roi, uni(std::max({2, span * lines}), 48))
                   : uni(p.mode == g::Mode::Joint ? 6 : 2, 40);
 }
 
@@ -293,7 +302,7 @@ BOOST_AUTO_TEST_CASE(census_headline_and_range) {
     BOOST_TEST(refusal(p, roi).empty());
 }
 
-BOOST_AUTO_TEST_CASE(census_over_batches_needs_their_halo_and_one_segment) {
+BOOST_AUTO_TEST_CASE(census_over_batches_and_segments) {
     isa::MachineConfig cfg;
     g::Params p;
     p.kc = 4;
@@ -324,15 +333,32 @@ BOOST_AUTO_TEST_CASE(census_over_batches_needs_their_halo_and_one_segment) {
                    "the census radius 2), so a batch needs 7 lines (use >= 14 PEs, or a ROI of "
                    "at most 6 lines)");
     }
-    cfg.pes = 32;  // a 40-wide ROI needs two video segments
+    // video segments: the codes at a segment's edges read the pixels x -+ r
+    // of the segments either side (two and three segments, single and bidir)
+    const Frame wide = random_frame(rng, 100, 14, p.D);
+    for (const auto& [P, w, mode] :
+         {std::tuple{32, 40, g::Mode::Bidir}, std::tuple{16, 42, g::Mode::Bidir},
+          std::tuple{16, 34, g::Mode::Single}, std::tuple{32, 90, g::Mode::Joint}}) {
+        cfg.pes = uint32_t(P);
+        g::Params q = p;
+        q.mode = mode;
+        const g::Roi roi{3, 1, w, 12};
+        const fw::FramePlan fp = fw::plan_frame(q, roi, cfg);
+        BOOST_TEST(fp.nseg == (w + P - 1) / P);
+        BOOST_TEST_CONTEXT("census over segments, P=" << P << " W=" << w) {
+            check_frame(q, wide, roi, P);
+        }
+    }
+    cfg.mem_bytes = 1024;
+    cfg.pes = 32;  // a last segment narrower than r
     try {
-        fw::plan_frame(p, g::Roi{0, 0, 40, 4}, cfg);
-        BOOST_ERROR("census over two segments was accepted");
+        fw::plan_frame(p, g::Roi{0, 0, 33, 4}, cfg);
+        BOOST_ERROR("census with a last segment of 1 pixel was accepted");
     } catch (const fw::FirmwareError& e) {
         BOOST_TEST(std::string(e.what()) ==
-                   "firmware: --kc 4 (census) needs the ROI's width in one video segment (a "
-                   "segment is 32 pixels, one per PE): the ROI is 40 wide; needs --pes >= 40, or "
-                   "a ROI of at most 32 pixels wide (--roi)");
+                   "firmware: --kc 4 (census) over 2 video segments of 32 pixels needs the last "
+                   "one at least 2 pixels wide (the census radius): the ROI is 33 wide, the last "
+                   "segment 1; use a ROI width of 32 or at least 34 (--roi), or other --pes");
     }
     cfg.pes = 2;  // the one-line-per-batch mode
     p.mode = g::Mode::Single;
@@ -379,7 +405,7 @@ BOOST_AUTO_TEST_CASE(halo_batches_random_frames) {
         const int lo = 2 * halo + 1, hi = std::min(roi.h - 1, 3 * halo + 3);
         if (lo > hi) continue;
         const int lines = uni(lo, hi);  // lines per batch < ROI lines: batches
-        const int P = std::max(span * lines, census ? roi.w : 2);
+        const int P = census_segments_ok(p, roi, std::max(span * lines, 2));
         if (P / span >= roi.h) continue;
         isa::MachineConfig cfg;
         cfg.pes = static_cast<uint32_t>(P);
@@ -641,8 +667,8 @@ BOOST_AUTO_TEST_CASE(vertical_window_random_frames) {
         if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
         const int span = p.mode == g::Mode::Single ? 1 : 2;
         const int lines = std::min(roi.h, 2 * halo_of(p) + 1);  // batches of the halo
-        const int P =
-            uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * lines, census ? roi.w : 2}), 48);
+        int P = uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * lines}), 48);
+        if (census) P = census_segments_ok(p, roi, P);
         isa::MachineConfig cfg;
         cfg.pes = static_cast<uint32_t>(P);
         cfg.mem_bytes = 2048;  // the bt bounds of the window copies need more than 1 KB

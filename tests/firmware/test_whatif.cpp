@@ -4,7 +4,7 @@
 //    case, and the bound never exceeds what the firmware measures;
 //  - for fixed work, more PEs never make a frame slower (16 .. 1024 PEs),
 //    also where the lines no longer fill the ring (the headline shape at
-//    256 / 512 / 1024 PEs, bidir and single; the quality preset from 128);
+//    256 / 512 / 1024 PEs, bidir and single; the quality preset from 64);
 //  - single mode's spilled pointers cost what they move, and the planner
 //    picks the cheaper of the external and the spare-PE layouts;
 //  - the DP phases cost a constant per computed slot across ROI widths and
@@ -78,15 +78,15 @@ BOOST_AUTO_TEST_CASE(census_frames_relayout_never_grows_with_the_pes) {
     // count whose lines fill the ring (256) the skewed rows serve census
     // frames too, so the re-layout does not grow with P; the bound counts
     // the codes as needed bytes and never exceeds what the firmware measures.
-    // The frame as a whole is non-increasing too, from 128 PEs (three
-    // batches sharing their halo of 5 lines) on: joint mode spills pointers
-    // to the external memory, and the transfers move the bytes of the PEs
-    // holding a line only (docs/isa.md, xld / xst), so from 256 PEs (one
-    // batch) the spill phase is the same at every P. 64 PEs hold only half
-    // the ROI's width in a video segment, which the census needs.
+    // The frame as a whole is non-increasing too, from 64 PEs (six batches
+    // sharing their halo of 5 lines, two video segments) and 128 (three
+    // batches) on: joint mode spills pointers to the external memory, and
+    // the transfers move the bytes of the PEs holding a line only
+    // (docs/isa.md, xld / xst), so from 256 PEs (one batch) the spill phase
+    // is the same at every P.
     g::Params p = g::preset("quality");
     uint64_t prev_rl = UINT64_MAX, prev = UINT64_MAX, spill0 = 0;
-    for (int P : {128, 256, 512, 1024}) {
+    for (int P : {64, 128, 256, 512, 1024}) {
         const Measured m = run_case(p, 128, 128, P);
         const uint64_t rl = m.r.relayout_in + m.r.relayout_out;
         BOOST_TEST_MESSAGE("quality 128x128 P="
@@ -95,7 +95,8 @@ BOOST_AUTO_TEST_CASE(census_frames_relayout_never_grows_with_the_pes) {
                            << phase(m.r, "spill") << ")");
         BOOST_TEST(rl <= prev_rl, "P=" << P << ": re-layout " << rl << " > " << prev_rl);
         BOOST_TEST(m.r.cycles <= prev, "P=" << P << ": " << m.r.cycles << " > " << prev);
-        BOOST_TEST(m.plan.batches.size() == (P == 128 ? 3u : 1u));
+        BOOST_TEST(m.plan.batches.size() == (P == 64 ? 6u : P == 128 ? 3u : 1u));
+        BOOST_TEST(m.plan.nseg == (P == 64 ? 2 : 1));
         BOOST_TEST(m.r.relayout_bound_in <= int64_t(m.r.relayout_in));
         BOOST_TEST(m.r.relayout_bound_out <= int64_t(m.r.relayout_out));
         BOOST_TEST(m.plan.rl.skew == (P > 256));
