@@ -82,6 +82,21 @@ int halo_of(const g::Params& p) {
     return (p.vote ? 1 : 0) + p.agg_ry + (p.kc > 0 ? p.census : 0);
 }
 
+// Random window weights brought inside the 16-bit cost range (the kc cap,
+// then km, kc and agg-ry lowered while the window's largest cost exceeds
+// 30,000), with at least one match weight.
+void fit_window_weights(g::Params& p) {
+    if (p.kc * 8 > 1000) p.kc = 50;
+    auto wm = [&] {
+        return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
+               (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
+    };
+    while (wm() > 30000 && p.km > 1) p.km /= 2;
+    while (wm() > 30000 && p.kc > 1) p.kc /= 2;
+    if (wm() > 30000) p.agg_ry = 1;
+    if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+}
+
 // The census's video segments: a ROI wider than P needs its last segment at
 // least r pixels wide; P grows to the ROI's width where it is not.
 int census_segments_ok(const g::Params& p, const g::Roi& roi, int P) {
@@ -392,15 +407,7 @@ BOOST_AUTO_TEST_CASE(halo_batches_random_frames) {
         p.agg_ry = census && uni(0, 1) == 0 ? 0 : uni(1, 2);
         p.agg_rx = uni(0, 2);
         p.vote = uni(0, 3) != 0;
-        if (p.kc * 8 > 1000) p.kc = 50;
-        auto wm = [&] {
-            return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
-                   (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
-        };
-        while (wm() > 30000 && p.km > 1) p.km /= 2;
-        while (wm() > 30000 && p.kc > 1) p.kc /= 2;
-        if (wm() > 30000) p.agg_ry = 1;
-        if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+        fit_window_weights(p);
         const int span = p.mode == g::Mode::Single ? 1 : 2, halo = halo_of(p);
         const int lo = 2 * halo + 1, hi = std::min(roi.h - 1, 3 * halo + 3);
         if (lo > hi) continue;
@@ -656,15 +663,7 @@ BOOST_AUTO_TEST_CASE(vertical_window_random_frames) {
         p.agg_ry = uni(1, 3);
         p.agg_rx = uni(0, 2);
         if (uni(0, 3) == 0) p.dissim = g::Dissim::Bt;
-        if (p.kc * 8 > 1000) p.kc = 50;
-        auto wm = [&] {
-            return (2 * p.agg_rx + 1) * (2 * p.agg_ry + 1) *
-                   (p.km * std::min(255, p.ad_max) + p.kb * p.gb + 8 * p.kc);
-        };
-        while (wm() > 30000 && p.km > 1) p.km /= 2;
-        while (wm() > 30000 && p.kc > 1) p.kc /= 2;
-        if (wm() > 30000) p.agg_ry = 1;
-        if (p.km == 0 && p.kb == 0 && p.kc == 0) p.km = 1;
+        fit_window_weights(p);
         const int span = p.mode == g::Mode::Single ? 1 : 2;
         const int lines = std::min(roi.h, 2 * halo_of(p) + 1);  // batches of the halo
         int P = uni(std::max({p.mode == g::Mode::Joint ? 6 : 2, span * lines}), 48);
