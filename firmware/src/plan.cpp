@@ -109,7 +109,7 @@ FirmwareError too_few_for_the_halo(const FramePlan& fp, const golden::Params& p,
 // The batches of the ROI's H lines (fp.lpb lines per batch at most, the
 // halo's lines either side of an inner edge), the most lines in one, the
 // video segments; the census's last segment at least r pixels wide.
-void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, bool bidir, int span) {
+void plan_batches(FramePlan& fp, const golden::Params& p, bool tiny, int span) {
     const int H = fp.roi.h;
     if (tiny) {
         for (int y = 0; y < H; ++y) fp.batches.push_back({y, 1, 0, 1});
@@ -175,23 +175,22 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     } else {
         throw rows_do_not_fit(fp.inl + fp.hbmax, "the video rows", mem);
     }
+    // several video segments: 6 bytes beside the census's code rows take
+    // the pixels x -+ r of the segments either side (census.inc, CENSUS_EDGE)
+    const int scr = f.census > 0 && fp.nseg > 1 ? 6 : 0;
     if (f.census > 0) {
         // census code rows (video layout): beside the pixel rows, clear of the
         // code buffers the code re-layout writes (they end at preg)
         const int rows = fp.split_in ? 1 : 2;
         fp.cinl = f.agg > 0 ? fp.inl + rows * fp.hbmax : std::max(f.preg, fp.inl + rows * fp.hbmax);
         fp.cinr = fp.split_in ? fp.cinl : fp.cinl + fp.hbmax;
-        // several video segments: 6 bytes beside the code rows take the
-        // pixels x -+ r of the segments either side (census.inc, CENSUS_ROW)
-        const int scr = fp.nseg > 1 ? 6 : 0;
         fp.cscr = fp.cinl + rows * fp.hbmax;
         if (fp.cinl + rows * fp.hbmax + scr > mem)
             throw rows_do_not_fit(fp.cinl + rows * fp.hbmax + scr, "the census code rows", mem);
         end = std::max(end, fp.cinl + rows * fp.hbmax + scr);
     }
     if (f.agg > 0) {
-        const int rows_end =
-            f.census > 0 ? fp.cinr + fp.hbmax + (fp.nseg > 1 ? 6 : 0) : fp.inr + fp.hbmax;
+        const int rows_end = f.census > 0 ? fp.cinr + fp.hbmax + scr : fp.inr + fp.hbmax;
         if (rows_end > f.agg_src) {
             std::ostringstream os;
             os << "does not fit: --agg-rx " << f.agg << " needs at least "
@@ -237,7 +236,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
         os << "too few PEs: bidir mode needs 2 PEs per line, have " << fp.P;
         throw FirmwareError(os.str());
     }
-    plan_batches(fp, p, tiny, bidir, span);
+    plan_batches(fp, p, tiny, span);
     detail::plan_relayout(fp);
     place_rows(fp, cfg);
     Relayout& rl = fp.rl;
