@@ -175,9 +175,10 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     } else {
         throw rows_do_not_fit(fp.inl + fp.hbmax, "the video rows", mem);
     }
-    // several video segments: 6 bytes beside the census's code rows take
-    // the pixels x -+ r of the segments either side (census.inc, CENSUS_EDGE)
-    const int scr = f.census > 0 && fp.nseg > 1 ? 6 : 0;
+    // several video segments: 3 bytes beside the census's code rows take
+    // the pixels x -+ r of the lines above, at and below from the segment
+    // beside (census.inc, CENSUS_EDGE: the left and right edges reuse them)
+    const int scr = f.census > 0 && fp.nseg > 1 ? 3 : 0;
     if (f.census > 0) {
         // census code rows (video layout): beside the pixel rows, clear of the
         // code buffers the code re-layout writes (they end at preg)

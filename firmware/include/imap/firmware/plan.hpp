@@ -192,7 +192,7 @@ struct FramePlan {
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
     int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
-    int cscr = 0;                   // 6 bytes: the census's pixels of the segments either side
+    int cscr = 0;                   // 3 bytes: the census's pixels of the segment beside
     Relayout rl;
     std::vector<Batch> batches;
     int mem_needed = 0;      // local bytes per PE
