@@ -68,6 +68,9 @@ bod\@:
         FWD_BODIES
         jmp     main
         BT_COLUMN
+.if BSTEP
+        BT_WALK
+.endif
 main:
 .if TINY
 ; 2 to 5 PEs with the vote: one line per batch; line b's forward pass, then

@@ -8,6 +8,9 @@
         FWD_BODIES
         jmp     start
         BT_COLUMN
+.if BSTEP
+        BT_WALK
+.endif
 start:
         cli     c8, #0
         cli     c9, #HB

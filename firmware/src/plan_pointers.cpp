@@ -138,6 +138,32 @@ bool place_forward(ForwardPlan& f, FreeMap& fm, int mem, int spill) {
     return true;
 }
 
+// The step-synchronous backtrack's column table (ForwardPlan::bstep_tab),
+// when every column is on chip, each kind has its columns 1..K without a
+// gap, column indices fit a byte and 2 * (kmax + 1) bytes are free of the
+// map and the columns; returns the end of the table (0 if none).
+int place_step_table(ForwardPlan& f, const FreeMap& fm, int mem) {
+    f.bstep_tab = -1;
+    if (f.tiny || f.kmax > 255 || !f.reloads.empty() || !f.spills.empty()) return 0;
+    for (int p = 0; p < f.kinds; ++p) {
+        f.bstep_a[p].assign(f.kmax + 1, 0);
+        f.bstep_k0[p] = std::min(f.K[p], f.kmax);
+        for (int k = 1; k <= f.bstep_k0[p]; ++k) {
+            const PointerColumn& c = f.ptr[p][k];
+            if (c.bytes == 0 || c.ext >= 0 || c.addr < 0) return 0;
+            f.bstep_a[p][k] = (4 * c.addr - c.base) & 0xFFFF;
+        }
+    }
+    FreeMap rm = fm;
+    for (int p = 0; p < 2; ++p)
+        for (int x = f.map; x < f.map + f.N && x < mem; ++x) rm.used[p][x] = 1;
+    const int len = 2 * (f.kmax + 1);
+    const int a = rm.find(len, {0, 1}, 0);
+    if (a < 0) return 0;
+    f.bstep_tab = a;
+    return a + len;
+}
+
 // After the forward pass: the output line (free of every on-chip column),
 // then each spilled column reloaded just before the backtrack reaches it,
 // into memory free of the map and of the on-chip columns still ahead
@@ -174,6 +200,7 @@ bool place_backtrack(ForwardPlan& f, FreeMap& fm, int mem, int spill) {
             top = std::max(top, a + col.size);
         }
     }
+    if (spill == 0) top = std::max(top, place_step_table(f, fm, mem));
     // Highest local address in use by the DP.
     for (int p = 0; p < 2; ++p)
         for (int a = mem - 1; a >= 0; --a)

@@ -81,6 +81,10 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
              {"XD", f.xd},
              {"KPP", f.kpp},
              {"MAP", f.map},
+             {"BSTEP", f.bstep_tab >= 0 ? 1 : 0},
+             {"BTAB", std::max(0, f.bstep_tab)},
+             {"BSK0", f.bstep_k0[0]},
+             {"BSK1", f.bidir ? f.bstep_k0[1] : f.bstep_k0[0]},
              {"TINY", f.tiny ? 1 : 0},
              {"TTABLE", f.ext_table},
              {"TBUF0", f.tiny_buf[0]},
@@ -297,6 +301,18 @@ void back_macro(std::ostringstream& os, const ForwardPlan& f, int spare_base) {
         os << "        BCOL " << k << ", " << addr << ", " << base[0] << ", " << base[1] << ", "
            << maxb - 1 << ", " << act[0] << ", " << act[1] << "\n";
     }
+    os << ".endm\n";
+    // PLAN_BTAB: the step-synchronous backtrack's table, one BTE per column
+    // (each kind's slot address; column 0 holds 0; a column only one kind
+    // steps in holds that kind's address for both, one store per byte)
+    os << ".macro PLAN_BTAB\n";
+    if (f.bstep_tab >= 0)
+        for (int k = 0; k <= f.kmax; ++k) {
+            int a0 = f.bstep_a[0][k], a1 = f.bidir ? f.bstep_a[1][k] : a0;
+            if (k > f.bstep_k0[0]) a0 = a1;
+            if (f.bidir && k > f.bstep_k0[1]) a1 = a0;
+            os << "        BTE " << k << ", " << a0 << ", " << a1 << "\n";
+        }
     os << ".endm\n";
 }
 

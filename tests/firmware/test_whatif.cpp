@@ -290,3 +290,81 @@ BOOST_AUTO_TEST_CASE(batches_have_no_limit) {
         }
     }
 }
+
+namespace {
+
+// The longest backtrack path of a frame's lines, in steps the walk takes
+// (golden events: the right wavefront's above the seed site, the left
+// wavefront's up to its arrival at site s - 1).
+int longest_path(const g::Params& p, const Frame& fr) {
+    std::vector<g::LineTables> t(size_t(fr.H));
+    for (int y = 0; y < fr.H; ++y)
+        g::forward_line(p, fr.L.data() + size_t(y) * fr.W, fr.R.data() + size_t(y) * fr.W, fr.W,
+                        t[size_t(y)]);
+    int longest = 0;
+    for (int y = 0; y < fr.H; ++y) {
+        const g::LineTables* above = y > 0 ? &t[size_t(y) - 1] : nullptr;
+        const g::LineTables* below = y + 1 < fr.H ? &t[size_t(y) + 1] : nullptr;
+        const auto ev = g::backtrack(above, t[size_t(y)], below, p.vote);
+        const int s = t[size_t(y)].s;
+        int left = 0, right = 0;
+        for (const g::Event& e : ev) {
+            if (e.i > s) ++right;
+            if (e.i < s) ++left;
+        }
+        longest = std::max({longest, left, right});
+    }
+    return longest;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(backtrack_follows_the_longest_path) {
+    // Each PE walks its own path (docs/firmware.md, section 4): the
+    // backtrack costs a constant per step of the frame's longest path,
+    // whatever D and the width. The column-synchronous walk (each column as
+    // long as its longest stay, the fallback when columns spill) does not:
+    // run here too, bit-exact, it must miss the +-10% band.
+    struct C {
+        int W, D;
+    };
+    const int H = 128, P = 256;
+    std::vector<double> step, column;
+    for (const C& c : {C{64, 16}, C{64, 32}, C{128, 16}, C{128, 32}, C{96, 24}}) {
+        g::Params p;
+        p.D = c.D;
+        std::mt19937 rng(uint32_t(c.W * 131 + c.D));
+        const Frame fr = random_frame(rng, c.W, H, c.D);
+        const g::Roi roi{0, 0, c.W, H};
+        isa::MachineConfig cfg;
+        cfg.pes = P;
+        const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), c.W, H, c.W},
+                                                g::ImageView{fr.R.data(), c.W, H, c.W}, roi);
+        const int longest = longest_path(p, fr);
+        uint64_t bt[2] = {0, 0};
+        for (int walk = 0; walk < 2; ++walk) {
+            fw::FramePlan plan = fw::plan_frame(p, roi, cfg);
+            BOOST_REQUIRE(plan.f.bstep_tab >= 0);  // the table fits at these points
+            if (walk == 1) plan.f.bstep_tab = -1;  // column-synchronous
+            const fw::FrameResult r = fw::run_frame_core(
+                plan, fw::assemble_frame(p, plan), g::ImageView{fr.L.data(), c.W, H, c.W},
+                g::ImageView{fr.R.data(), c.W, H, c.W}, cfg);
+            BOOST_REQUIRE(r.map.data == want.data);
+            bt[walk] = phase(r, "backtrack");
+        }
+        step.push_back(double(bt[0]) / longest);
+        column.push_back(double(bt[1]) / longest);
+        BOOST_TEST_MESSAGE("W=" << c.W << " D=" << c.D << ": longest path " << longest
+                                << " steps, backtrack " << bt[0] << " cycles ("
+                                << double(bt[0]) / longest << " per step), column-synchronous "
+                                << bt[1] << " (" << double(bt[1]) / longest << ")");
+        BOOST_TEST(bt[0] < bt[1]);
+    }
+    auto within = [](const std::vector<double>& v, double tol) {
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        const double mid = (*lo + *hi) / 2;
+        return (*hi - mid) <= tol * mid && (mid - *lo) <= tol * mid;
+    };
+    BOOST_TEST(within(step, 0.10));
+    BOOST_TEST(!within(column, 0.10));
+}

@@ -112,6 +112,15 @@ struct ForwardPlan {
     bool rows = false, h8 = false, d8 = false;
     int agg_src = 0;  // the re-layout's buffers (rb, co) then sit at the top: agg_src..mem
     int map = 0;      // output line (N bytes) during the backtrack and after
+    // Step-synchronous backtrack (docs/firmware.md, section 4): each PE walks
+    // its own path, reading column k's pointers at the slot address
+    // bstep_a[kind][k] = 4 * address - base (16 bit) from a table at
+    // bstep_tab (low bytes, columns 0..kmax) and bstep_tab + kmax + 1 (high
+    // bytes); -1: the column-synchronous backtrack (spilled or reloaded
+    // columns, arrays of 2 to 5 PEs, kmax > 255, or no room for the table).
+    int bstep_tab = -1;
+    std::vector<int> bstep_a[2];
+    int bstep_k0[2] = {0, 0};  // the first column each kind steps in
     int mem_needed = 0;
     int64_t ext_needed = 0;
     // 2 to 5 PEs with the vote across batches: one line per batch, pointer
