@@ -163,7 +163,11 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     // the cost planes and the pointer region are free during the input (with
     // the window: the copies' region too, up to the re-layout's buffers)
     fp.inl = f.agg > 0 ? f.kblk + f.kbs : f.costl;
-    if (fp.inl + 2 * fp.hbmax <= mem) {
+    if (fp.rl.copies) {
+        // kind copies: row 2y + kind per image (plan_skew checked the room)
+        fp.inr = fp.inl + 2 * fp.hbmax;
+        end = std::max(end, fp.inl + 4 * fp.hbmax);
+    } else if (fp.inl + 2 * fp.hbmax <= mem) {
         fp.inr = fp.inl + fp.hbmax;
         end = std::max(end, fp.inl + 2 * fp.hbmax);
     } else if (fp.inl + fp.hbmax <= mem && !(f.census > 0 && fp.nseg > 1)) {
@@ -212,7 +216,8 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
 }
 
 FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
-                          const isa::MachineConfig& cfg, bool spare) {
+                          const isa::MachineConfig& cfg, bool spare,
+                          RowLayout rows = RowLayout::Fastest) {
     detail::check_options(p, true);
     if (!cfg.indirect)
         throw FirmwareError(
@@ -222,6 +227,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
     fp.spare = spare;
+    fp.rows_allowed = static_cast<int>(rows);
     const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;
     const int span = bidir || spare ? 2 : 1;
     fp.lpb = std::min(fp.P / span, kMaxBatchLines);
@@ -238,7 +244,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
         throw FirmwareError(os.str());
     }
     plan_batches(fp, p, tiny, span);
-    detail::plan_relayout(fp);
+    detail::plan_relayout(fp, detail::plan_mem(cfg));
     place_rows(fp, cfg);
     Relayout& rl = fp.rl;
     relayout_bound(fp, &rl.bound_in, &rl.bound_out, &rl.hop_bound_in, &rl.hop_bound_out);
@@ -306,8 +312,8 @@ bool spare_cheaper(const golden::Params& p, const isa::MachineConfig& cfg, const
 }  // namespace
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
-                     SpillLayout layout) {
-    FramePlan fp = plan_frame_impl(p, roi, cfg, false);
+                     SpillLayout layout, RowLayout rows) {
+    FramePlan fp = plan_frame_impl(p, roi, cfg, false, rows);
     if (layout == SpillLayout::External) return fp;
     FramePlan sp;
     if (const char* why = plan_spare(p, roi, cfg, fp, &sp)) {

@@ -118,6 +118,13 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
 // re-layout.
 void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     const bool multi = !fp.f.tiny && fp.batches.size() > 1;
+    // kind copies: kind 1's rows sit at lane offset SKB + 2y; lines below YBB
+    // start past the ring's end (offset + P); the first line of each group
+    // whose row passes lane P - 1 (relayout.inc VROWS)
+    const int W0 = detail::seg_width(fp, 0), P = fp.P, skb = fp.rl.skb;
+    const int ybb = fp.rl.copies ? std::min(fp.hbmax, (1 - skb) / 2) : 0;
+    const int ywb1 = -skb - W0 < 0 ? 0 : (-skb - W0) / 2 + 1;
+    const int ywb2 = P - W0 - skb < 0 ? 0 : (P - W0 - skb) / 2 + 1;
     equs(os, {
                  {"P", fp.P},
                  {"HROI", fp.roi.h},
@@ -140,6 +147,15 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"UR", fp.rl.ur},
                  {"UL", fp.rl.ul},
                  {"SKEW", fp.rl.skew ? 1 : 0},
+                 {"SKW", fp.rl.wrap ? 1 : 0},
+                 {"YWI", fp.rl.ywi},
+                 {"YWO", fp.rl.ywo},
+                 {"SKC", fp.rl.copies ? 1 : 0},
+                 {"SKB", fp.rl.skb},
+                 {"YBB", ybb},
+                 {"YWB1", ywb1},
+                 {"YWB2", ywb2},
+                 {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : fp.rl.skew_in) - fp.rl.dmin + 1},
                  {"SKI", fp.rl.skew_in},
                  {"SKO", fp.rl.skew_out},
                  {"SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin},

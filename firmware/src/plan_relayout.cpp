@@ -5,6 +5,7 @@
 // the output displacements, and the lower bound of the re-layout's ring
 // cycles (relayout_bound).
 #include <algorithm>
+#include <cstdlib>
 
 #include "plan_internal.hpp"
 
@@ -34,9 +35,9 @@ void for_each_receiver(const FramePlan& fp, int g, Take&& take) {
 // several batches). The lines sit so that the
 // input displacements d = base + kind - x are centred on 0, the output
 // displacements likewise (skew_out).
-void plan_skew(FramePlan& fp, int span) {
+void plan_skew(FramePlan& fp, int span, int mem) {
     Relayout& rl = fp.rl;
-    if (fp.nseg != 1) return;
+    if (fp.nseg != 1 || fp.rows_allowed < 1) return;
     // the census on skewed rows clamps its lines at HBMAX - 1 (assembly-time
     // hop counts, census.inc CENSUS_SKEWED), wrong for a shorter last batch
     if (fp.f.census > 0 && fp.batches.size() > 1) return;
@@ -47,13 +48,66 @@ void plan_skew(FramePlan& fp, int span) {
         hi = std::max(hi, kind - a);
     });
     if (lo > hi) return;
+    // Kind copies (bidir, no census, no window, both images' rows twice in
+    // memory): kind 1's copy shifted by skb aligns its pixels' rounds with
+    // kind 0's, both kinds served in every round.
+    int a[2] = {0, 0}, n[2] = {0, 0};
+    for_each_receiver(fp, 0, [&](int kind, int a0, int n0) {
+        a[kind] = a0;
+        n[kind] = n0;
+    });
+    const int skb = a[0] + 1 - a[1];
+    bool copies = fp.rows_allowed >= 3 && fp.f.bidir && fp.f.census == 0 && fp.f.agg == 0 &&
+                  !fp.spare && n[0] > 0 && n[1] > 0 && skb <= 0 && fp.f.costl + 4 * H <= mem &&
+                  std::max(n[0], n[1]) < hi - lo + 1;
+    if (copies) {
+        // worth it when the rounds saved (each about 40 cycles of sending and
+        // storing plus 2 |d| of shifts, relayout.inc RIN_SKEW) outweigh the
+        // second row per line (about 7 cycles of input, 25 more where it
+        // passes the ring's end: relayout.inc VROWS)
+        auto rounds_cost = [](int d0, int d1) {
+            int64_t c = 0;
+            for (int d = d0; d <= d1; ++d) c += 40 + 2 * std::abs(d);
+            return c;
+        };
+        const int lo2 = -(a[0] + std::max(n[0], n[1]) - 1), hi2 = -a[0];
+        const int b1 = std::max(0, -((lo + hi) / 2)), b2 = std::max(0, -((lo2 + hi2) / 2));
+        int wrapped = 0;  // lines whose kind-1 row passes the ring's end
+        for (int y = 0; y < H; ++y) {
+            const int m = ((skb + span * y) % P + P) % P;
+            wrapped += m + W > P;
+        }
+        copies =
+            rounds_cost(b2 + lo2, b2 + hi2) + 7 * H + 25 * wrapped < rounds_cost(b1 + lo, b1 + hi);
+    }
+    if (copies) {
+        lo = -(a[0] + std::max(n[0], n[1]) - 1);
+        hi = -a[0];
+    }
     const int base = std::max(0, -((lo + hi) / 2));
     // output: kind - x over the map pixels (pixel x leaves the PE of parity x & 1)
     const int olo = fp.f.bidir ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
     const int skew_out = std::max(0, base + (olo + ohi) / 2);
     const int rows = span * (H - 1) + W;  // lanes spanned by the skewed rows
-    if (base + span * H > P || rows > P || skew_out + rows > P) return;
+    if (span * H > P || W > P || rows > 2 * P || skew_out + rows > 2 * P) return;
+    // The lines' PEs past the ring's end continue at PE 0 (DP_SETUP takes
+    // positions mod P), rows past it at lane 0 (wrap); not with the census's
+    // codes on skewed rows, nor the spare PEs' layout.
+    const bool wrap = rows > P || skew_out + rows > P;
+    if ((wrap || base + span * H > P) && (fp.f.census > 0 || fp.spare || fp.rows_allowed < 2))
+        return;
+    rl.modular = false;
     rl.skew = true;
+    rl.wrap = wrap;
+    rl.copies = copies;
+    rl.skb = copies ? skb : 0;
+    // the first line whose input / output row passes lane P - 1
+    auto first_past = [&](int lane0) {  // first y with lane0 + span * y + W > P
+        const int r = P - W - lane0;
+        return r < 0 ? 0 : r / span + 1;
+    };
+    rl.ywi = first_past(0);
+    rl.ywo = first_past(skew_out);
     rl.base = base;
     rl.skew_in = 0;
     rl.skew_out = skew_out;
@@ -81,6 +135,41 @@ struct Routes {
     int pe_of(int y, int kind) const { return ((fp.rl.base + span * y + kind) % P + P) % P; }
     // lane of pixel x of line y in the video rows (input) and the output rows
     int soff(int y) const { return fp.rl.skew ? fp.rl.skew_in + span * y : 0; }
+    // the copies of the video rows: lane offsets of line y's pixel 0 (kind
+    // copies: kind 1's copy at skb + span * y too)
+    int ncopies() const { return fp.rl.copies ? 2 : 1; }
+    int coff(int y, int c) const { return c == 0 ? soff(y) : fp.rl.skb + span * y; }
+    // Pixels x of [lo, hi] (hi - lo < P) whose lane x + off (mod P) lies in
+    // the arc [a, a + len), as intervals of x appended to *iv.
+    void arc_pixels(int lo, int hi, int off, int a, int len,
+                    std::vector<std::pair<int, int>>* iv) const {
+        // x = a - off + t + k P, t in [0, len)
+        const int x0 = a - off;
+        for (int k = -3; k <= 3; ++k) {
+            const int b0 = std::max(lo, x0 + k * P), b1 = std::min(hi, x0 + k * P + len - 1);
+            if (b0 <= b1) iv->push_back({b0, b1});
+        }
+    }
+    // How many pixels of [lo, hi] have a copy in the arc.
+    int inside_count(int y, int lo, int hi, int a, int len) const {
+        if (lo > hi) return 0;
+        std::vector<std::pair<int, int>> iv[2];
+        for (int c = 0; c < ncopies(); ++c) arc_pixels(lo, hi, coff(y, c), a, len, &iv[c]);
+        int n = 0;
+        for (int c = 0; c < ncopies(); ++c)
+            for (const auto& [b0, b1] : iv[c]) n += b1 - b0 + 1;
+        if (ncopies() == 2)
+            for (const auto& [p0, p1] : iv[0])
+                for (const auto& [q0, q1] : iv[1])
+                    n -= std::max(0, std::min(p1, q1) - std::max(p0, q0) + 1);
+        return n;
+    }
+    // Shortest ring distance from any copy of pixel x of line y to PE pe.
+    int from_copies(int y, int x, int pe) const {
+        int best = INT_MAX;
+        for (int c = 0; c < ncopies(); ++c) best = std::min(best, ring(pe, x + coff(y, c)));
+        return best;
+    }
     int ooff(int y) const { return fp.rl.skew ? fp.rl.skew_out + span * y : 0; }
     // Pixels X of image img (0 = left, 1 = right) that kind `kind` needs: [lo, hi].
     void need(int img, int kind, int* lo, int* hi) const {
@@ -93,9 +182,12 @@ struct Routes {
         else
             *lo = f.s + 1;
     }
-    // Size of [lo, hi] (lanes, within 0..P-1) inside the arc [a, a + len) mod P.
+    // Size of [lo, hi] (lanes, taken mod P: wrapped rows) inside the arc
+    // [a, a + len) mod P.
     int overlap(int lo, int hi, int a, int len) const {
         if (lo > hi) return 0;
+        if (lo >= P) return overlap(lo - P, hi - P, a, len);
+        if (hi >= P) return overlap(lo, P - 1, a, len) + overlap(P, hi, a, len);
         auto lin = [&](int b0, int b1) {
             return std::max(0, std::min(hi, b1 - 1) - std::max(lo, b0) + 1);
         };
@@ -119,7 +211,7 @@ void segment_hops(const Routes& r, int H, int g, int64_t* hops, int64_t* ohops) 
                     int lo, hi;
                     r.need(img, kind, &lo, &hi);
                     if (X < lo || X > hi) continue;
-                    best = std::min(best, r.ring(r.pe_of(y, kind), x + r.soff(y)));
+                    best = std::min(best, r.from_copies(y, x, r.pe_of(y, kind)));
                     ++cnt;
                 }
                 if (cnt) *hops += best + (cnt - 1);
@@ -138,7 +230,6 @@ void arc_bytes(const Routes& r, int H, int g, int a, int len, int64_t* c_in, int
     const int W = seg_width(r.fp, g), X0 = g * r.P, P = r.P;
     auto inside = [&](int q) { return ((q - a) % P + P) % P < len; };
     for (int y = 0; y < H; ++y) {
-        const int so = r.soff(y);
         bool kin[2] = {inside(r.pe_of(y, 0)), r.kinds == 2 && inside(r.pe_of(y, 1))};
         if (!kin[0] && !kin[1]) {
             *c_out += r.overlap(r.ooff(y), r.ooff(y) + W - 1, a, len);
@@ -162,9 +253,9 @@ void arc_bytes(const Routes& r, int H, int g, int a, int len, int64_t* c_in, int
             int hole = 0;
             if (f.bidir && img == 1 && kin[0] && kin[1]) {
                 const int xs = f.s - X0;
-                if (xs >= lo && xs <= hi) hole = inside(xs + so) ? 0 : 1;
+                if (xs >= lo && xs <= hi) hole = r.inside_count(y, xs, xs, a, len) > 0 ? 0 : 1;
             }
-            *c_in += (hi - lo + 1) - r.overlap(lo + so, hi + so, a, len) - hole;
+            *c_in += (hi - lo + 1) - r.inside_count(y, lo, hi, a, len) - hole;
         }
     }
 }
@@ -191,7 +282,7 @@ void in_lanes(const ForwardPlan& f, int P, int g, int W, int kind, int* a, int* 
 // The lines fill the ring (and a segment holds at most half of it): the
 // routes take the shorter way round; else the lines sit centred on the
 // segment and every route is direct, or the rows are skewed (plan_skew).
-void plan_relayout(FramePlan& fp) {
+void plan_relayout(FramePlan& fp, int mem) {
     Relayout& rl = fp.rl;
     const int P = fp.P, span = fp.span();
     const bool bidir = fp.f.bidir;
@@ -210,6 +301,7 @@ void plan_relayout(FramePlan& fp) {
         // output displacements sigma = sender - receiver, one per class mod P
         rl.our = P / 2;  // sigma = our_min .. our_min + step*(n-1): stored as min and count
         rl.oul = 0;
+        plan_skew(fp, span, mem);
         return;
     }
     const int reg = span * fp.hbmax;
@@ -228,7 +320,7 @@ void plan_relayout(FramePlan& fp) {
         rl.ur = hr + 1;
         rl.ul = hl;
     }
-    plan_skew(fp, span);
+    plan_skew(fp, span, mem);
 }
 
 void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {

@@ -13,22 +13,83 @@
 #define BOOST_TEST_MODULE firmware_whatif
 #include <boost/test/unit_test.hpp>
 #include <map>
+#include <sstream>
 
 #include "fw_test_util.hpp"
 
 using namespace fwtest;
 
-BOOST_AUTO_TEST_CASE(relayout_within_twice_the_ring_bound_at_the_headline) {
+BOOST_AUTO_TEST_CASE(relayout_at_the_headline_beats_any_direct_routing) {
+    // The skewed rows (wrapped around the ring, one copy per kind) start each
+    // pixel near its line's PEs: the re-layout then costs less than the ring
+    // bound of the direct placement (rows where vin puts them, lines around
+    // the ring), i.e. less than any firmware routing from that placement
+    // could. Against the bound of its own placement it is not within 2x
+    // (docs/firmware.md, section 5).
     g::Params p;  // D = 64, bidir, vote on
     const Measured m = run_case(p, 128, 128, 256);
+    isa::MachineConfig cfg;
+    cfg.pes = 256;
+    const fw::FramePlan direct = fw::plan_frame(p, g::Roi{0, 0, 128, 128}, cfg,
+                                                fw::SpillLayout::Cheaper, fw::RowLayout::Direct);
     BOOST_TEST_MESSAGE("relayout in " << m.r.relayout_in << " (bound " << m.r.relayout_bound_in
-                                      << "), out " << m.r.relayout_out << " (bound "
-                                      << m.r.relayout_bound_out << ")");
+                                      << ", direct placement's " << direct.rl.bound_in << "), out "
+                                      << m.r.relayout_out << " (bound " << m.r.relayout_bound_out
+                                      << ", direct placement's " << direct.rl.bound_out << ")");
+    BOOST_TEST(m.plan.rl.copies);
     BOOST_TEST(m.r.relayout_bound_in > 0);
     BOOST_TEST(m.r.relayout_bound_out > 0);
-    BOOST_TEST(m.r.relayout_in <= uint64_t(2 * m.r.relayout_bound_in));
-    BOOST_TEST(m.r.relayout_out <= uint64_t(2 * m.r.relayout_bound_out));
+    BOOST_TEST(m.r.relayout_in < uint64_t(direct.rl.bound_in));
+    BOOST_TEST(m.r.relayout_out < uint64_t(direct.rl.bound_out));
     BOOST_TEST(m.r.cycles <= 200000u);  // headline <= 5 ms at 40 MHz
+}
+
+BOOST_AUTO_TEST_CASE(planner_picks_the_fastest_rows) {
+    // Every placement of the video rows runs bit-exact; the planner's pick
+    // (Fastest: skewed, wrapped, kind copies where its estimate favours
+    // them) costs no more video and re-layout cycles than any other.
+    struct C {
+        int W, H, D, P;
+        g::Mode mode;
+    };
+    for (const C& c : {C{128, 128, 64, 256, g::Mode::Bidir}, C{32, 128, 16, 256, g::Mode::Bidir},
+                       C{64, 64, 16, 256, g::Mode::Bidir}, C{96, 40, 24, 80, g::Mode::Bidir},
+                       C{48, 64, 12, 64, g::Mode::Single}, C{64, 32, 16, 64, g::Mode::Joint},
+                       C{128, 128, 32, 512, g::Mode::Bidir}}) {
+        g::Params p;
+        p.D = c.D;
+        p.mode = c.mode;
+        BOOST_TEST_CONTEXT("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P << " mode "
+                                << g::to_string(c.mode)) {
+            std::mt19937 rng(uint32_t(c.W * 7 + c.H));
+            const Frame fr = random_frame(rng, c.W, c.H, c.D);
+            const g::Roi roi{0, 0, c.W, c.H};
+            isa::MachineConfig cfg;
+            cfg.pes = uint32_t(c.P);
+            const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), c.W, c.H, c.W},
+                                                    g::ImageView{fr.R.data(), c.W, c.H, c.W}, roi);
+            std::ostringstream msg;
+            uint64_t cost[4] = {0, 0, 0, 0};
+            for (int rows = 0; rows < 4; ++rows) {
+                const fw::FramePlan plan = fw::plan_frame(p, roi, cfg, fw::SpillLayout::Cheaper,
+                                                          static_cast<fw::RowLayout>(rows));
+                const fw::FrameResult r = fw::run_frame_core(
+                    plan, fw::assemble_frame(p, plan), g::ImageView{fr.L.data(), c.W, c.H, c.W},
+                    g::ImageView{fr.R.data(), c.W, c.H, c.W}, cfg);
+                BOOST_REQUIRE(r.map.data == want.data);
+                cost[rows] = phase(r, "video_in") + phase(r, "relayout_in") +
+                             phase(r, "relayout_out") + phase(r, "video_out");
+                msg << " " << rows << ": " << cost[rows]
+                    << (plan.rl.skew ? (plan.rl.copies ? " (copies)"
+                                        : plan.rl.wrap ? " (wrapped)"
+                                                       : " (skewed)")
+                                     : " (direct)");
+            }
+            BOOST_TEST_MESSAGE("W=" << c.W << " H=" << c.H << " D=" << c.D << " P=" << c.P << ":"
+                                    << msg.str());
+            BOOST_TEST(cost[3] <= *std::min_element(cost, cost + 3));
+        }
+    }
 }
 
 BOOST_AUTO_TEST_CASE(the_bound_never_exceeds_the_measured_relayout) {

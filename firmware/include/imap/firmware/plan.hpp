@@ -183,6 +183,18 @@ struct Relayout {
     // displacement per pixel: input rounds d = dmin .. dmax, output sigma =
     // smin .. smax (step span).
     bool skew = false;
+    // Wrapped skewed rows: a row that passes the ring's end continues at
+    // lane 0 (lanes taken mod P); input lines from ywi on take their wrapped
+    // part from a second `vin`, output lines from ywo a second `vout`.
+    bool wrap = false;
+    int ywi = 0, ywo = 0;
+    // Kind copies (bidir, skewed rows): each line's rows come in twice, row
+    // 2y + kind for the PE of that kind, kind 1's copy from lane offset
+    // skb + span*y (skb = first lane of kind 0 + 1 - first lane of kind 1),
+    // so that every round serves both kinds: max(n0, n1) rounds instead of
+    // about n0 + n1.
+    bool copies = false;
+    int skb = 0;
     int skew_in = 0, skew_out = 0;
     int dmin = 0, dmax = 0, smin = 0, smax = 0;
     int64_t bound_in = 0, bound_out = 0;  // lower bound of the ring cycles, summed over batches
@@ -212,7 +224,15 @@ struct FramePlan {
     bool spare = false;
     int spare_base = 0;
     int span() const { return f.bidir || spare ? 2 : 1; }
+    // which placements of the video rows the planner may take (RowLayout)
+    int rows_allowed = 3;  // 0 direct only, 1 + skewed rows, 2 + wrapped, 3 + kind copies
 };
+
+// How the planner places the video rows (docs/firmware.md, section 5):
+// Fastest takes the skewed rows (wrapped around the ring, with kind copies)
+// where they apply and its estimate favours them; the others stop at a
+// simpler placement (for measuring one against another).
+enum class RowLayout { Direct = 0, Skewed = 1, Wrapped = 2, Fastest = 3 };
 
 // Where single mode's spilled pointer columns go (docs/firmware.md,
 // section 3): Cheaper picks the spare layout where it is feasible and its
@@ -224,7 +244,8 @@ enum class SpillLayout { Cheaper, External, Spare };
 // the halo: the vote's line, the vertical window's and the census's), video rows, memory,
 // re-layout. FirmwareError when the set cannot run on `cfg` (what is needed vs available).
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
-                     SpillLayout layout = SpillLayout::Cheaper);
+                     SpillLayout layout = SpillLayout::Cheaper,
+                     RowLayout rows = RowLayout::Fastest);
 
 // Lower bound of the re-layout's ring cycles of a frame plan (docs/firmware.md,
 // section 5): per batch and segment the larger of the byte-hop bound (every
