@@ -70,7 +70,7 @@ int seg_width(const FramePlan& fp, int g);
 // Source lanes [a, a + n) of segment g (width W) whose pixels go to kind `kind` (input).
 void in_lanes(const ForwardPlan& f, int P, int g, int W, int kind, int* a, int* n);
 // The re-layout geometry of a frame with its batches and segments planned (fp.rl).
-void plan_relayout(FramePlan& fp, int mem);
+void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs);
 // The displacements sigma = sender - receiver of segment g's output items.
 void out_displacements(const FramePlan& fp, int g, int* smin, int* smax);
 

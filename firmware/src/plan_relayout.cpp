@@ -35,7 +35,8 @@ void for_each_receiver(const FramePlan& fp, int g, Take&& take) {
 // several batches). The lines sit so that the
 // input displacements d = base + kind - x are centred on 0, the output
 // displacements likewise (skew_out).
-void plan_skew(FramePlan& fp, int span, int mem) {
+void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
+               bool allow_copies = true) {
     Relayout& rl = fp.rl;
     if (fp.nseg != 1 || fp.rows_allowed < 1) return;
     // the census on skewed rows clamps its lines at HBMAX - 1 (assembly-time
@@ -57,34 +58,15 @@ void plan_skew(FramePlan& fp, int span, int mem) {
         n[kind] = n0;
     });
     const int skb = a[0] + 1 - a[1];
-    bool copies = fp.rows_allowed >= 3 && fp.f.bidir && fp.f.census == 0 && fp.f.agg == 0 &&
+    // RowLayout::Fastest (3) weighs the placements by the estimate below;
+    // Skewed (1) and Wrapped (2) take the skewed rows wherever they apply,
+    // as the spare PEs' layout does.
+    const bool weigh = fp.rows_allowed >= 3 && !fp.spare;
+    bool copies = allow_copies && weigh && fp.f.bidir && fp.f.census == 0 && fp.f.agg == 0 &&
                   !fp.spare && n[0] > 0 && n[1] > 0 && skb <= 0 && fp.f.costl + 4 * H <= mem &&
                   std::max(n[0], n[1]) < hi - lo + 1;
-    if (copies) {
-        // worth it when the rounds saved (each about 40 cycles of sending and
-        // storing plus 2 |d| of shifts, relayout.inc RIN_SKEW) outweigh the
-        // second row per line (about 7 cycles of input, 25 more where it
-        // passes the ring's end: relayout.inc VROWS)
-        auto rounds_cost = [](int d0, int d1) {
-            int64_t c = 0;
-            for (int d = d0; d <= d1; ++d) c += 40 + 2 * std::abs(d);
-            return c;
-        };
-        const int lo2 = -(a[0] + std::max(n[0], n[1]) - 1), hi2 = -a[0];
-        const int b1 = std::max(0, -((lo + hi) / 2)), b2 = std::max(0, -((lo2 + hi2) / 2));
-        int wrapped = 0;  // lines whose kind-1 row passes the ring's end
-        for (int y = 0; y < H; ++y) {
-            const int m = ((skb + span * y) % P + P) % P;
-            wrapped += m + W > P;
-        }
-        copies =
-            rounds_cost(b2 + lo2, b2 + hi2) + 7 * H + 25 * wrapped < rounds_cost(b1 + lo, b1 + hi);
-    }
-    if (copies) {
-        lo = -(a[0] + std::max(n[0], n[1]) - 1);
-        hi = -a[0];
-    }
-    const int base = std::max(0, -((lo + hi) / 2));
+    const int lo2 = -(a[0] + std::max(n[0], n[1]) - 1), hi2 = -a[0];
+    const int base = std::max(0, -(((copies ? lo2 : lo) + (copies ? hi2 : hi)) / 2));
     // output: kind - x over the map pixels (pixel x leaves the PE of parity x & 1)
     const int olo = fp.f.bidir ? -((W - 1) - ((W - 1) & 1)) : -(W - 1), ohi = 0;
     const int skew_out = std::max(0, base + (olo + ohi) / 2);
@@ -96,6 +78,55 @@ void plan_skew(FramePlan& fp, int span, int mem) {
     const bool wrap = rows > P || skew_out + rows > P;
     if ((wrap || base + span * H > P) && (fp.f.census > 0 || fp.spare || fp.rows_allowed < 2))
         return;
+    // The planner's estimate of each placement's input (relayout.inc; the
+    // cost table's video_line and ring_hop, one cycle for the rest): a
+    // skewed round sends (about 14 cycles, 21 around the ring, 22 with kind
+    // copies), shifts 2 |d| hops and stores (15); a video row costs its two
+    // vin and 4 CP cycles, a row past the ring's end two vin and about 20
+    // more. The direct routes' rounds: 2u and 2u + 1 hops with two stores
+    // (44 cycles; bidir) or u hops with one (27; single).
+    const int vl = costs.video_line, rh = costs.ring_hop;
+    auto wraps = [&](int off) {  // lines whose row from lane off + span y passes P - 1
+        int c = 0;
+        for (int y = 0; y < H; ++y) c += ((off + span * y) % P + P) % P + W > P;
+        return c;
+    };
+    auto rows_cost = [&](int copies_n, int wrapped) {
+        return int64_t(copies_n) * H * (2 * vl + 4) + int64_t(wrapped) * (2 * vl + 20);
+    };
+    auto skew_cost = [&](int d0, int d1, int send) {
+        int64_t c = 0;
+        for (int d = d0; d <= d1; ++d) c += send + 15 + 2 * std::abs(d) * rh;
+        return c;
+    };
+    const int64_t one =
+        skew_cost(base + lo, base + hi, wrap ? 21 : 14) + rows_cost(1, wrap ? wraps(0) : 0);
+    int64_t direct = rows_cost(1, 0);
+    if (fp.f.bidir) {
+        for (int u = 0; u < rl.ur; ++u) direct += 44 + 2 * (2 * u + 2) * rh;
+        for (int u = 0; u < rl.ul; ++u) direct += 49 + 2 * (2 * u + 3) * rh;
+    } else {
+        for (int u = 0; u < rl.ur + rl.ul; ++u) direct += 27 + 2 * (u + 1) * rh;
+    }
+    if (copies) {
+        const int64_t two_rows = skew_cost(base + lo2, base + hi2, 22) + rows_cost(2, wraps(0)) +
+                                 int64_t(wraps(skb)) * (2 * vl + 20);
+        // the base above was centred for the copies; without them the
+        // single copy's rounds are centred on their own range
+        const int b1 = std::max(0, -((lo + hi) / 2));
+        const int64_t one_c =
+            skew_cost(b1 + lo, b1 + hi, wrap ? 21 : 14) + rows_cost(1, wrap ? wraps(0) : 0);
+        copies = two_rows < one_c && two_rows < direct;
+        if (!copies) {
+            // plan again without the copies (their base and output offset)
+            plan_skew(fp, span, mem, costs, false);
+            return;
+        }
+        lo = lo2;
+        hi = hi2;
+    } else if (weigh && direct <= one) {
+        return;  // the direct routes are cheaper (few lines, a slow video line)
+    }
     rl.modular = false;
     rl.skew = true;
     rl.wrap = wrap;
@@ -282,7 +313,7 @@ void in_lanes(const ForwardPlan& f, int P, int g, int W, int kind, int* a, int* 
 // The lines fill the ring (and a segment holds at most half of it): the
 // routes take the shorter way round; else the lines sit centred on the
 // segment and every route is direct, or the rows are skewed (plan_skew).
-void plan_relayout(FramePlan& fp, int mem) {
+void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
     Relayout& rl = fp.rl;
     const int P = fp.P, span = fp.span();
     const bool bidir = fp.f.bidir;
@@ -301,7 +332,7 @@ void plan_relayout(FramePlan& fp, int mem) {
         // output displacements sigma = sender - receiver, one per class mod P
         rl.our = P / 2;  // sigma = our_min .. our_min + step*(n-1): stored as min and count
         rl.oul = 0;
-        plan_skew(fp, span, mem);
+        plan_skew(fp, span, mem, costs);
         return;
     }
     const int reg = span * fp.hbmax;
@@ -320,7 +351,7 @@ void plan_relayout(FramePlan& fp, int mem) {
         rl.ur = hr + 1;
         rl.ul = hl;
     }
-    plan_skew(fp, span, mem);
+    plan_skew(fp, span, mem, costs);
 }
 
 void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {

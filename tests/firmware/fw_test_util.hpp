@@ -123,11 +123,12 @@ inline Frame random_frame(std::mt19937& rng, int W, int H, int D) {
 }
 
 inline void check_frame(const g::Params& p, const Frame& fr, const g::Roi& roi, int P,
-                        uint64_t* cycles = nullptr, uint32_t mem_bytes = 0) {
+                        uint64_t* cycles = nullptr, uint32_t mem_bytes = 0,
+                        fw::RowLayout rows = fw::RowLayout::Fastest) {
     isa::MachineConfig cfg;
     cfg.pes = uint32_t(P);
     if (mem_bytes > 0) cfg.mem_bytes = mem_bytes;
-    const fw::FramePlan plan = fw::plan_frame(p, roi, cfg);
+    const fw::FramePlan plan = fw::plan_frame(p, roi, cfg, fw::SpillLayout::Cheaper, rows);
     const isa::Program prog = fw::assemble_frame(p, plan);
     isa::Machine m(cfg);
     m.load(prog);

@@ -229,9 +229,11 @@ struct FramePlan {
 };
 
 // How the planner places the video rows (docs/firmware.md, section 5):
-// Fastest takes the skewed rows (wrapped around the ring, with kind copies)
-// where they apply and its estimate favours them; the others stop at a
-// simpler placement (for measuring one against another).
+// Fastest weighs the direct routes, the skewed rows (around the ring) and
+// the kind copies by its estimate of their cycles on the run's cost table;
+// Direct never skews; Skewed and Wrapped take the skewed rows wherever they
+// apply (unwrapped / around the ring), without kind copies (for measuring
+// one placement against another).
 enum class RowLayout { Direct = 0, Skewed = 1, Wrapped = 2, Fastest = 3 };
 
 // Where single mode's spilled pointer columns go (docs/firmware.md,
