@@ -21,7 +21,7 @@ set tics nomirror
 set logscale x 2
 set logscale y 10
 set xrange [6.4:1280]
-set yrange [0.430390625:331.5408]
+set yrange [0.435296875:331.5408]
 set xtics ("8" 8, "16" 16, "32" 32, "64" 64, "128" 128, "256" 256, "512" 512, "1024" 1024)
 set key top right box opaque samplen 2 width 1 height 0.5
 set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"

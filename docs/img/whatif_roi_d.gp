@@ -20,7 +20,7 @@ set border 3 lc rgb "#444444"
 set tics nomirror
 set logscale y 10
 set xrange [23.04:264.96]
-set yrange [0.102328125:160]
+set yrange [0.103890625:160]
 set xtics ("32" 32, "64" 64, "128" 128, "256" 256)
 set key outside right top vertical
 set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"

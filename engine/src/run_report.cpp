@@ -174,8 +174,12 @@ nlohmann::json run_report(const ModelRun& run, const Comparison& cmp, const g::P
                         {"valid_states", run.bounds.states}};
     j["relayout"] = {{"in_cycles", r.relayout_in},
                      {"in_lower_bound", r.relayout_bound_in},
+                     {"in_ring_bound", r.relayout_ring_in},
+                     {"in_memory_bound", r.relayout_mem_in},
                      {"out_cycles", r.relayout_out},
-                     {"out_lower_bound", r.relayout_bound_out}};
+                     {"out_lower_bound", r.relayout_bound_out},
+                     {"out_ring_bound", r.relayout_ring_out},
+                     {"out_memory_bound", r.relayout_mem_out}};
     j["pe_utilisation"] =
         static_cast<double>(r.stats.active_lane_cycles) /
         (static_cast<double>(cfg.pes) * static_cast<double>(std::max<uint64_t>(1, r.cycles)));

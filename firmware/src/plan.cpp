@@ -246,8 +246,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     plan_batches(fp, p, tiny, span);
     detail::plan_relayout(fp, detail::plan_mem(cfg), cfg.costs);
     place_rows(fp, cfg);
-    Relayout& rl = fp.rl;
-    relayout_bound(fp, &rl.bound_in, &rl.bound_out, &rl.hop_bound_in, &rl.hop_bound_out);
+    relayout_bound(fp, cfg.costs);
     return fp;
 }
 

@@ -2,10 +2,11 @@
 // plan's batches, segments and line placement: which lanes each kind
 // receives, where the lines sit on the ring (around it, centred on the
 // segment, or skewed rows), the rounds of the input and output sweeps and
-// the output displacements, and the lower bound of the re-layout's ring
-// cycles (relayout_bound).
+// the output displacements, and the lower bound of the re-layout's
+// cycles: ring and memory instructions (relayout_bound).
 #include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 #include "plan_internal.hpp"
 
@@ -253,6 +254,57 @@ void segment_hops(const Routes& r, int H, int g, int64_t* hops, int64_t* ohops) 
         }
 }
 
+// The memory instructions of segment g of a batch of H lines: a byte moves
+// between PEs only over the ring, so it leaves its sender's memory by a load
+// and enters the receiver's by a store (one byte per PE per instruction).
+// In: every PE stores each byte it needs that no video row put on its own
+// lane; the lane holding a needed byte loads it once (a byte with two copies
+// may be loaded at either: those count toward the loads spread over all P
+// lanes). Out: the lane a map pixel leaves through stores it unless it is one
+// of the line's PEs; the line's PEs load its pixels between them.
+void segment_mem(const Routes& r, int H, int g, int64_t* in, int64_t* out) {
+    const int W = seg_width(r.fp, g), X0 = g * r.P, P = r.P;
+    std::vector<int> recv(P, 0), load(P, 0), ostore(P, 0);
+    int64_t remote = 0, oload = 0;
+    for (int y = 0; y < H; ++y) {
+        int pes[2] = {r.pe_of(y, 0), r.pe_of(y, r.kinds - 1)};
+        int oremote = 0;
+        for (int x = 0; x < W; ++x) {
+            const int X = X0 + x;
+            int lane[2] = {0, 0};
+            for (int c = 0; c < r.ncopies(); ++c) lane[c] = ((x + r.coff(y, c)) % P + P) % P;
+            auto local = [&](int pe) {
+                for (int c = 0; c < r.ncopies(); ++c)
+                    if (lane[c] == pe) return true;
+                return false;
+            };
+            for (int img = 0; img < 2; ++img) {
+                bool far = false;
+                for (int kind = 0; kind < r.kinds; ++kind) {
+                    int lo, hi;
+                    r.need(img, kind, &lo, &hi);
+                    if (X < lo || X > hi || local(pes[kind])) continue;
+                    ++recv[pes[kind]];
+                    far = true;
+                }
+                if (!far) continue;
+                ++remote;
+                if (r.ncopies() == 1) ++load[lane[0]];
+            }
+            const int ol = ((x + r.ooff(y)) % P + P) % P;
+            if (ol != pes[0] && ol != pes[1]) {
+                ++ostore[ol];
+                ++oremote;
+            }
+        }
+        oload = std::max<int64_t>(oload, (oremote + r.kinds - 1) / r.kinds);
+    }
+    const int64_t loads =
+        std::max<int64_t>(*std::max_element(load.begin(), load.end()), (remote + P - 1) / P);
+    *in = loads + *std::max_element(recv.begin(), recv.end());
+    *out = oload + *std::max_element(ostore.begin(), ostore.end());
+}
+
 // The bytes of segment g (a batch of H lines) that must enter the arc
 // [a, a + len) of the ring: in (pixels its PEs need from lanes outside it)
 // and out (map pixels of lines outside it whose output lanes are inside).
@@ -385,14 +437,15 @@ void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {
 
 }  // namespace detail
 
-void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop_in,
-                    int64_t* hop_out) {
+void relayout_bound(FramePlan& fp, const isa::CostTable& costs) {
     const detail::Routes r(fp);
     const int P = fp.P;
     // Arc endpoints on a grid of at most 64 points per ring (any arc gives a
     // valid bound; the grid keeps the planner fast).
     const int step = std::max(1, P / 64);
-    int64_t tin = 0, tout = 0, hin = 0, hout = 0;
+    Relayout& rl = fp.rl;
+    rl.ring_bound_in = rl.ring_bound_out = rl.hop_bound_in = rl.hop_bound_out = 0;
+    rl.mem_bound_in = rl.mem_bound_out = 0;
     for (const Batch& b : fp.batches) {
         const int H = b.lines;
         for (int g = 0; g < fp.nseg; ++g) {
@@ -407,21 +460,24 @@ void relayout_bound(const FramePlan& fp, int64_t* in, int64_t* out, int64_t* hop
                     ocut = std::max(ocut, c_out);
                 }
             // census frames: every needed pixel comes with its code (a second
-            // pair of rows over the same routes), twice the bytes in
+            // pair of rows over the same routes), twice the bytes in; the
+            // memory instructions count the pixels only
             const int per = fp.f.census > 0 ? 2 : 1;
             hops *= per;
             cut *= per;
             const int64_t hb_in = (hops + P - 1) / P, hb_out = (ohops + P - 1) / P;
-            tin += std::max(hb_in, cut);
-            tout += std::max(hb_out, ocut);
-            hin += hb_in;
-            hout += hb_out;
+            rl.ring_bound_in += std::max(hb_in, cut) * costs.ring_hop;
+            rl.ring_bound_out += std::max(hb_out, ocut) * costs.ring_hop;
+            rl.hop_bound_in += hb_in * costs.ring_hop;
+            rl.hop_bound_out += hb_out * costs.ring_hop;
+            int64_t m_in = 0, m_out = 0;
+            detail::segment_mem(r, H, g, &m_in, &m_out);
+            rl.mem_bound_in += m_in * costs.mem;
+            rl.mem_bound_out += m_out * costs.mem;
         }
     }
-    if (in) *in = tin;
-    if (out) *out = tout;
-    if (hop_in) *hop_in = hin;
-    if (hop_out) *hop_out = hout;
+    rl.bound_in = rl.ring_bound_in + rl.mem_bound_in;
+    rl.bound_out = rl.ring_bound_out + rl.mem_bound_out;
 }
 
 }  // namespace imap::firmware

@@ -35,6 +35,10 @@ void set_relayout_figures(const FramePlan& plan, FrameResult& r) {
     }
     r.relayout_bound_in = plan.rl.bound_in;
     r.relayout_bound_out = plan.rl.bound_out;
+    r.relayout_ring_in = plan.rl.ring_bound_in;
+    r.relayout_ring_out = plan.rl.ring_bound_out;
+    r.relayout_mem_in = plan.rl.mem_bound_in;
+    r.relayout_mem_out = plan.rl.mem_bound_out;
 }
 
 FrameResult run_frame_core(const FramePlan& plan, const isa::Program& prog,

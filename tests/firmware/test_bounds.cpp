@@ -152,3 +152,47 @@ BOOST_AUTO_TEST_CASE(no_phase_runs_below_its_bound) {
         }
     }
 }
+
+BOOST_AUTO_TEST_CASE(relayout_bound_counts_the_loads_and_stores) {
+    // One line of 8 pixels on 8 PEs in single mode: the line's PE needs all
+    // 8 pixels of both images; the video rows put one of each on its own
+    // lane, so it stores 7 + 7 bytes, and each other lane loads its 2 bytes
+    // (14 loads over 8 lanes: at least 2 per lane). Out: 7 map pixels leave
+    // the line's PE (7 loads there), one into each other lane (1 store).
+    g::Params p;
+    p.D = 4;
+    p.mode = g::Mode::Single;
+    p.vote = false;
+    for (const int mem : {1, 3})
+        for (const int hop : {1, 2}) {
+            isa::MachineConfig cfg;
+            cfg.pes = 8;
+            cfg.costs.mem = mem;
+            cfg.costs.ring_hop = hop;
+            const fw::FramePlan plan = fw::plan_frame(p, g::Roi{0, 0, 8, 1}, cfg);
+            BOOST_TEST_CONTEXT("mem " << mem << ", ring_hop " << hop) {
+                BOOST_REQUIRE(plan.batches.size() == 1u);
+                BOOST_REQUIRE(plan.nseg == 1);
+                BOOST_TEST(plan.rl.mem_bound_in == (14 + 2) * mem);
+                BOOST_TEST(plan.rl.mem_bound_out == (7 + 1) * mem);
+                // the ring part is in ring_hop units; the bound is the sum
+                BOOST_TEST(plan.rl.ring_bound_in > 0);
+                BOOST_TEST(plan.rl.ring_bound_in % hop == 0);
+                BOOST_TEST(plan.rl.bound_in == plan.rl.ring_bound_in + plan.rl.mem_bound_in);
+                BOOST_TEST(plan.rl.bound_out == plan.rl.ring_bound_out + plan.rl.mem_bound_out);
+                isa::MachineConfig one = cfg;
+                one.costs.ring_hop = 1;
+                BOOST_TEST(plan.rl.ring_bound_in ==
+                           hop * fw::plan_frame(p, g::Roi{0, 0, 8, 1}, one).rl.ring_bound_in);
+                // the byte-hops: pixel x of both images from lane x to the
+                // line's PE, the shorter way round the ring of 8 (over P)
+                int64_t hops = 0;
+                const int pe = ((plan.rl.base % 8) + 8) % 8;
+                for (int x = 0; x < 8; ++x) {
+                    const int d = ((x - pe) % 8 + 8) % 8;
+                    hops += 2 * std::min(d, 8 - d);
+                }
+                BOOST_TEST(plan.rl.hop_bound_in == (hops + 7) / 8 * hop);
+            }
+        }
+}

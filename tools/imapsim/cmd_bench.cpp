@@ -38,10 +38,10 @@ void print_figures(const bench::Figures& f, int runs) {
     // and per PE, and the re-layout against the ring's lower bound.
     std::printf("  forward cycles/state/PE %10.1f      (forward phase %.0f cycles)\n",
                 f.forward / f.per_pe, f.forward);
-    std::printf("  re-layout in            %10.0f      (ring lower bound %.0f: %.2fx)\n",
-                f.relayout_in, f.bound_in, f.bound_in > 0 ? f.relayout_in / f.bound_in : 0.0);
-    std::printf("  re-layout out           %10.0f      (ring lower bound %.0f: %.2fx)\n",
-                f.relayout_out, f.bound_out, f.bound_out > 0 ? f.relayout_out / f.bound_out : 0.0);
+    std::printf("  re-layout in            %10.0f      (lower bound %.0f: %.2fx)\n", f.relayout_in,
+                f.bound_in, f.bound_in > 0 ? f.relayout_in / f.bound_in : 0.0);
+    std::printf("  re-layout out           %10.0f      (lower bound %.0f: %.2fx)\n", f.relayout_out,
+                f.bound_out, f.bound_out > 0 ? f.relayout_out / f.bound_out : 0.0);
     std::printf("  phase / machine bound   ");
     for (const auto& [ph, b] : t.bounds.items())
         std::printf(" %s %.2fx", ph.c_str(),

@@ -188,11 +188,14 @@ void print_run_summary(const ModelRun& run, const Comparison& cmp, const isa::Ma
                             ? 0.0
                             : static_cast<double>(r.stats.active_lane_cycles) /
                                   (static_cast<double>(cfg.pes) * static_cast<double>(r.cycles));
-    std::printf("  re-layout: in %llu cycles (ring lower bound %lld), out %llu (bound %lld)\n",
-                static_cast<unsigned long long>(r.relayout_in),
-                static_cast<long long>(r.relayout_bound_in),
-                static_cast<unsigned long long>(r.relayout_out),
-                static_cast<long long>(r.relayout_bound_out));
+    std::printf(
+        "  re-layout: in %llu cycles (lower bound %lld = ring %lld + loads/stores %lld), out %llu "
+        "(bound %lld = %lld + %lld)\n",
+        static_cast<unsigned long long>(r.relayout_in), static_cast<long long>(r.relayout_bound_in),
+        static_cast<long long>(r.relayout_ring_in), static_cast<long long>(r.relayout_mem_in),
+        static_cast<unsigned long long>(r.relayout_out),
+        static_cast<long long>(r.relayout_bound_out), static_cast<long long>(r.relayout_ring_out),
+        static_cast<long long>(r.relayout_mem_out));
     std::printf("  PE utilisation: %.1f%% (active PE-cycles / (PEs x cycles))\n", 100.0 * util);
     print_energy(run.energy.frame, cfg, run.energy_source, run.energy.phases);
     print_tornado(run.energy.tornado, 6);

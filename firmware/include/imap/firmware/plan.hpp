@@ -197,8 +197,14 @@ struct Relayout {
     int skb = 0;
     int skew_in = 0, skew_out = 0;
     int dmin = 0, dmax = 0, smin = 0, smax = 0;
-    int64_t bound_in = 0, bound_out = 0;  // lower bound of the ring cycles, summed over batches
-    int64_t hop_bound_in = 0, hop_bound_out = 0;  // the hop part of it (byte-hops / P)
+    // The re-layout's lower bound (relayout_bound), summed over batches:
+    // bound = ring + mem; ring = the ring instructions' cycles (the larger
+    // of the hop and cut bounds), hop = the byte-hop part of it, mem = the
+    // loads at the senders and stores at the receivers.
+    int64_t bound_in = 0, bound_out = 0;
+    int64_t ring_bound_in = 0, ring_bound_out = 0;
+    int64_t hop_bound_in = 0, hop_bound_out = 0;
+    int64_t mem_bound_in = 0, mem_bound_out = 0;
 };
 
 // Everything the full firmware (dp.s) needs for one frame.
@@ -249,12 +255,15 @@ FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa:
                      SpillLayout layout = SpillLayout::Cheaper,
                      RowLayout rows = RowLayout::Fastest);
 
-// Lower bound of the re-layout's ring cycles of a frame plan (docs/firmware.md,
-// section 5): per batch and segment the larger of the byte-hop bound (every
-// needed byte must cross its links, P bytes move one hop per cycle) and the
-// cut bound (one byte per cycle enters any arc of the ring), in and out.
-void relayout_bound(const FramePlan& plan, int64_t* in, int64_t* out, int64_t* hop_in = nullptr,
-                    int64_t* hop_out = nullptr);
+// Lower bound of the re-layout's cycles of a frame plan (docs/firmware.md,
+// section 5), in and out, per batch and segment: the ring instructions (the
+// larger of the byte-hop bound, every needed byte must cross its links and
+// P bytes move one hop per ring_hop, and the cut bound, one byte per hop
+// enters any arc of the ring) plus the memory instructions (a byte leaves a
+// PE's memory by a load at its sender and enters the receiver's by a store,
+// one byte per PE per instruction; the ring is the only path between PEs).
+// Sets plan.rl's bound_*, ring_bound_*, hop_bound_*, mem_bound_*.
+void relayout_bound(FramePlan& plan, const isa::CostTable& costs);
 
 // The generated prelude of a frame plan: .equ constants and the PLAN_*
 // macros (per-column calls of the forward pass, spills, reloads, backtrack

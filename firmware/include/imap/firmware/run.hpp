@@ -21,9 +21,11 @@ struct FrameResult {
     isa::Stats stats;
     double wall_s = 0;
     // Re-layout: measured cycles of the phases relayout_in / relayout_out and
-    // the lower bound of the plan (FramePlan::rl, docs/firmware.md section 5).
+    // the lower bound of the plan (FramePlan::rl, docs/firmware.md section 5):
+    // bound = ring + memory instructions.
     uint64_t relayout_in = 0, relayout_out = 0;
     int64_t relayout_bound_in = 0, relayout_bound_out = 0;
+    int64_t relayout_ring_in = 0, relayout_ring_out = 0, relayout_mem_in = 0, relayout_mem_out = 0;
 };
 
 // Fills the re-layout fields of a result from its phases and the plan.
