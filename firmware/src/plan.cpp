@@ -226,6 +226,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     FramePlan fp;
     fp.roi = roi;
     fp.P = static_cast<int>(cfg.pes);
+    fp.mem = detail::plan_mem(cfg);
     fp.spare = spare;
     fp.rows_allowed = static_cast<int>(rows);
     const bool bidir = p.mode == golden::Mode::Bidir || p.mode == golden::Mode::Joint;

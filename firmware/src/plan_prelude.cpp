@@ -125,6 +125,17 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     const int ybb = fp.rl.copies ? std::min(fp.hbmax, (1 - skb) / 2) : 0;
     const int ywb1 = -skb - W0 < 0 ? 0 : (-skb - W0) / 2 + 1;
     const int ywb2 = P - W0 - skb < 0 ? 0 : (P - W0 - skb) / 2 + 1;
+    // Skewed rounds (RSK_SEND): a sender whose lane holds no line's row this
+    // round may read any row that lies in the local memory. SKNC 0: it reads
+    // row 0 (clamped); 1: row q mod P (kind copies: 16 bits); 2: the row
+    // index's low byte (kind copies: the rows q < 2 lines <= 256 keep their
+    // index).
+    const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
+    int sknc = 0;
+    if (rows_top + 255 < fp.mem && (!fp.rl.copies || 2 * fp.hbmax <= 256))
+        sknc = 2;
+    else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
+        sknc = 1;
     equs(os, {
                  {"P", fp.P},
                  {"HROI", fp.roi.h},
@@ -152,6 +163,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"YWO", fp.rl.ywo},
                  {"SKC", fp.rl.copies ? 1 : 0},
                  {"SKB", fp.rl.skb},
+                 {"SKNC", sknc},
                  {"YBB", ybb},
                  {"YWB1", ywb1},
                  {"YWB2", ywb2},

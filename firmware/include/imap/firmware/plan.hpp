@@ -216,6 +216,7 @@ struct FramePlan {
     int hbmax = 0;  // most lines in one batch
     int halo = 0;   // lines a batch holds either side of its output (several batches)
     int nseg = 0;   // segments of P pixels per ROI line
+    int mem = 0;                    // local memory per PE the plan fits in (bytes)
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
     int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
