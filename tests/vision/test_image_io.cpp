@@ -81,6 +81,44 @@ BOOST_AUTO_TEST_CASE(sixteen_bit_and_float_are_rejected) {
     }
 }
 
+BOOST_AUTO_TEST_CASE(file_only_formats_are_refused_without_temporary_files) {
+    // OpenCV decodes PFM, Radiance HDR and OpenEXR from a file only: imdecode
+    // writes the bytes to OPENCV_TEMP_PATH and leaves the file there when the
+    // decoder throws (here: a PFM header past its size limits). The loader
+    // refuses these float formats before decoding: nothing is left behind.
+    TempDir t("io");
+    TempDir ocv("ocvtmp");
+    const std::string dir = ocv.path().string() + "/";
+    BOOST_REQUIRE(::setenv("OPENCV_TEMP_PATH", dir.c_str(), 1) == 0);
+    const struct {
+        const char* name;
+        std::string bytes;
+        const char* format;
+    } cases[] = {
+        {"huge.pfm", "Pf\n99999999 99999999\n-1\n" + std::string(64, '\0'), "PFM"},
+        {"small.pfm", "Pf\n2 2\n-1\n" + std::string(16, '\0'), "PFM"},
+        {"colour.pfm", "PF\n1 1\n-1\n" + std::string(12, '\0'), "PFM"},
+        {"sky.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n" + std::string(4, '\0'),
+         "Radiance HDR"},
+        {"scene.exr", std::string("\x76\x2f\x31\x01", 4) + std::string(32, '\0'), "OpenEXR"},
+    };
+    for (const auto& c : cases) {
+        vision_test::write_file(t.file(c.name), c.bytes);
+        const std::string msg = input_error([&] { v::load_grey8(t.file(c.name), "gt"); });
+        BOOST_TEST_CONTEXT(c.name << ": " << msg) {
+            BOOST_TEST(contains(msg, c.format));
+            BOOST_TEST(contains(msg, "use PNG"));
+        }
+    }
+    size_t left = 0;
+    for (const auto& e : std::filesystem::directory_iterator(ocv.path())) {
+        BOOST_TEST_MESSAGE("left behind: " << e.path());
+        ++left;
+    }
+    ::unsetenv("OPENCV_TEMP_PATH");
+    BOOST_TEST(left == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(missing_garbage_empty_and_folders_are_rejected) {
     TempDir t("io");
     // Each message says which it is: missing, unreadable or not an image.

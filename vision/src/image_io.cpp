@@ -110,6 +110,21 @@ bool check_png(std::vector<uint8_t>& b) {
     return true;
 }
 
+// Formats whose OpenCV decoder reads from a file only: imdecode copies the
+// bytes to a temporary file and, when the decoder throws (a bad header, a
+// size past its limits), leaves that file behind. They are float formats
+// this loader refuses anyway (PFM, Radiance HDR, OpenEXR); named here so
+// no input reaches imdecode through a temporary file.
+const char* file_only_format(const std::vector<uint8_t>& b) {
+    auto starts = [&](const char* m, size_t n) {
+        return b.size() >= n && std::memcmp(b.data(), m, n) == 0;
+    };
+    if (starts("Pf", 2) || starts("PF", 2)) return "PFM";
+    if (starts("#?", 2)) return "Radiance HDR";
+    if (starts("\x76\x2f\x31\x01", 4)) return "OpenEXR";
+    return nullptr;
+}
+
 }  // namespace
 
 cv::Mat load_grey8(const std::string& path, const std::string& what) {
@@ -131,6 +146,9 @@ cv::Mat load_grey8(const std::string& path, const std::string& what) {
     if (bytes.empty()) throw InputError(who + ": cannot read (empty file, not an image)");
 
     if (!check_png(bytes)) throw InputError(who + ": cannot read (corrupt or truncated PNG)");
+    if (const char* fmt = file_only_format(bytes))
+        throw InputError(who + ": cannot read (a " + fmt +
+                         " float image; this tool reads 8-bit images: use PNG)");
     cv::Mat m;
     try {
         m = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
