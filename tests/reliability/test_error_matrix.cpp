@@ -165,6 +165,7 @@ struct Inputs {
         write_file(dir / "trunc.png", png.substr(0, png.size() / 2));
         write_file(dir / "empty.png", "");
         write_file(dir / "text.png", "this is not an image\n");
+        write_file(dir / "disp.pfm", std::string("Pf\n2 2\n-1\n") + std::string(16, '\0'));
         fs::create_directories(dir / "folder.png");
 
         // eval scenes: gt all zero (scale 1), every bad one differs in its left/right image
@@ -388,6 +389,9 @@ ERROR_ROW(eval_folder_as_image, kInput, EVAL " --D 8 --scene {in}/scene_folder",
 ERROR_ROW(run_text_file_as_image, kInput,
           "run --left {in}/text.png --right {in}/grey_r.png --out {o}/map.png", "left image",
           "text.png", "not an image")
+ERROR_ROW(run_float_pfm_as_image, kInput,
+          "run --left {in}/disp.pfm --right {in}/grey_r.png --out {o}/map.png", "left image",
+          "disp.pfm", "PFM float image", "use PNG")
 ERROR_ROW(golden_missing_image, kInput,
           "golden --left {in}/nosuch.png --right {in}/grey_r.png --out {o}/map.png", "nosuch.png",
           "cannot read")
