@@ -118,13 +118,7 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
 // re-layout.
 void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     const bool multi = !fp.f.tiny && fp.batches.size() > 1;
-    // kind copies: kind 1's rows sit at lane offset SKB + 2y; lines below YBB
-    // start past the ring's end (offset + P); the first line of each group
-    // whose row passes lane P - 1 (relayout.inc VROWS)
-    const int W0 = detail::seg_width(fp, 0), P = fp.P, skb = fp.rl.skb;
-    const int ybb = fp.rl.copies ? std::min(fp.hbmax, (1 - skb) / 2) : 0;
-    const int ywb1 = -skb - W0 < 0 ? 0 : (-skb - W0) / 2 + 1;
-    const int ywb2 = P - W0 - skb < 0 ? 0 : (P - W0 - skb) / 2 + 1;
+    const int P = fp.P;
     // Skewed rounds (RSK_SEND): a sender whose lane holds no line's row this
     // round may read any row that lies in the local memory. SKNC 0: it reads
     // row 0 (clamped); 1: row q mod P (kind copies: 16 bits); 2: the row
@@ -164,9 +158,9 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"SKC", fp.rl.copies ? 1 : 0},
                  {"SKB", fp.rl.skb},
                  {"SKNC", sknc},
-                 {"YBB", ybb},
-                 {"YWB1", ywb1},
-                 {"YWB2", ywb2},
+                 {"YBB", fp.rl.ybb},
+                 {"YWB1", fp.rl.ywb1},
+                 {"YWB2", fp.rl.ywb2},
                  {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : fp.rl.skew_in) - fp.rl.dmin + 1},
                  {"SKI", fp.rl.skew_in},
                  {"SKO", fp.rl.skew_out},

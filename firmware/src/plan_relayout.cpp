@@ -133,13 +133,18 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     rl.wrap = wrap;
     rl.copies = copies;
     rl.skb = copies ? skb : 0;
-    // the first line whose input / output row passes lane P - 1
+    // the first line whose row passes lane P - 1: input, output, and kind
+    // 1's copy (its lines below ybb start past the ring's end, at lane
+    // skb + P + span * y, the others at skb + span * y)
     auto first_past = [&](int lane0) {  // first y with lane0 + span * y + W > P
         const int r = P - W - lane0;
         return r < 0 ? 0 : r / span + 1;
     };
     rl.ywi = first_past(0);
     rl.ywo = first_past(skew_out);
+    rl.ybb = copies ? std::min(H, (1 - skb) / span) : 0;
+    rl.ywb1 = copies ? first_past(skb + P) : 0;
+    rl.ywb2 = copies ? first_past(skb) : 0;
     rl.base = base;
     rl.skew_in = 0;
     rl.skew_out = skew_out;

@@ -195,6 +195,10 @@ struct Relayout {
     // about n0 + n1.
     bool copies = false;
     int skb = 0;
+    // kind 1's copy: its lines below ybb start past the ring's end; the
+    // first line whose row passes lane P - 1 among those (ywb1) and the
+    // others (ywb2); relayout.inc VROWS
+    int ybb = 0, ywb1 = 0, ywb2 = 0;
     int skew_in = 0, skew_out = 0;
     int dmin = 0, dmax = 0, smin = 0, smax = 0;
     // The re-layout's lower bound (relayout_bound), summed over batches:
@@ -216,7 +220,7 @@ struct FramePlan {
     int hbmax = 0;  // most lines in one batch
     int halo = 0;   // lines a batch holds either side of its output (several batches)
     int nseg = 0;   // segments of P pixels per ROI line
-    int mem = 0;                    // local memory per PE the plan fits in (bytes)
+    int mem = 0;    // local memory per PE the plan fits in (bytes)
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
     int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
