@@ -123,11 +123,12 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     // round may read any row that lies in the local memory. SKNC 0: it reads
     // row 0 (clamped); 1: row q mod P (kind copies: 16 bits); 2: the row
     // index's low byte (kind copies: the rows q < 2 lines <= 256 keep their
-    // index).
+    // index); 3: kind copies with P a multiple of 256, whose q mod P has the
+    // low byte of q itself: the sender steps that byte alone.
     const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
     int sknc = 0;
     if (rows_top + 255 < fp.mem && (!fp.rl.copies || 2 * fp.hbmax <= 256))
-        sknc = 2;
+        sknc = fp.rl.copies && P % 256 == 0 ? 3 : 2;
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
     equs(os, {
