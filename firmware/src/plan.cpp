@@ -245,7 +245,7 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
         throw FirmwareError(os.str());
     }
     plan_batches(fp, p, tiny, span);
-    detail::plan_relayout(fp, detail::plan_mem(cfg), cfg.costs);
+    detail::plan_relayout(fp, fp.mem, cfg.costs);
     place_rows(fp, cfg);
     relayout_bound(fp, cfg.costs);
     return fp;
