@@ -34,6 +34,19 @@ void equs(std::ostringstream& os, std::initializer_list<Equ> list) {
     for (const Equ& e : list) equ(os, e.name, e.value);
 }
 
+// The line buffers' address of pixel X of R / L on a PE of kind h (linear
+// in X; relayout.inc: RSK_STORE takes them as LRB/LRS, LLB/LLS per kind).
+int buffer_addr_r(const ForwardPlan& f, int h, int X) {
+    if (!f.bidir) return f.rb - 1 - X;
+    if (f.joint) return h == 0 ? f.rb - 1 - X : f.rb - f.N + X;
+    return h == 0 ? f.rb - f.s + X : f.rb + f.s - X;
+}
+int buffer_addr_l(const ForwardPlan& f, int h, int X) {
+    if (!f.bidir) return f.rb + 2 + X;
+    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
+    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+}
+
 // The output frame: 0 cyclopean, 1 left, 2 right.
 int frame_code(const golden::Params& p) {
     return p.frame == golden::Frame::Cyclopean ? 0 : p.frame == golden::Frame::Left ? 1 : 2;
@@ -109,6 +122,14 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
              {"H8", f.h8 ? 1 : 0},
              {"D8", f.d8 ? 1 : 0},
              {"EXCHN", f.bidir ? std::max(0, std::min(f.N - 1 - f.s, f.D - (f.joint ? 1 : 2))) : 0},
+             {"LRB0", buffer_addr_r(f, 0, 0)},
+             {"LRS0", buffer_addr_r(f, 0, 1) - buffer_addr_r(f, 0, 0)},
+             {"LLB0", buffer_addr_l(f, 0, 0)},
+             {"LLS0", buffer_addr_l(f, 0, 1) - buffer_addr_l(f, 0, 0)},
+             {"LRB1", buffer_addr_r(f, 1, 0)},
+             {"LRS1", buffer_addr_r(f, 1, 1) - buffer_addr_r(f, 1, 0)},
+             {"LLB1", buffer_addr_l(f, 1, 0)},
+             {"LLS1", buffer_addr_l(f, 1, 1) - buffer_addr_l(f, 1, 0)},
          });
 }
 
@@ -189,16 +210,10 @@ int holder(const ForwardPlan& f, int X) {
     return f.bidir && X > f.s ? 1 : 0;
 }
 int addr_r(const ForwardPlan& f, int X) {
-    const int h = holder(f, X);
-    if (!f.bidir) return f.rb - 1 - X;
-    if (f.joint) return h == 0 ? f.rb - 1 - X : f.rb - f.N + X;
-    return h == 0 ? f.rb - f.s + X : f.rb + f.s - X;
+    return buffer_addr_r(f, holder(f, X), X);
 }
 int addr_l(const ForwardPlan& f, int X) {
-    const int h = holder(f, X);
-    if (!f.bidir) return f.rb + 2 + X;
-    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
-    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+    return buffer_addr_l(f, holder(f, X), X);
 }
 
 // One `op` line per line-buffer byte the node reads (R' then L', from level
