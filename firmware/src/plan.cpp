@@ -163,7 +163,11 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     // the cost planes and the pointer region are free during the input (with
     // the window: the copies' region too, up to the re-layout's buffers)
     fp.inl = f.agg > 0 ? f.kblk + f.kbs : f.costl;
-    if (fp.rl.copies) {
+    if (fp.rl.windows) {
+        // windowed rows: wsize rows per image (plan_windows checked the room)
+        fp.inr = fp.inl + fp.rl.wsize;
+        end = std::max(end, fp.inl + 2 * fp.rl.wsize);
+    } else if (fp.rl.copies) {
         // kind copies: row 2y + kind per image (plan_skew checked the room)
         fp.inr = fp.inl + 2 * fp.hbmax;
         end = std::max(end, fp.inl + 4 * fp.hbmax);
@@ -207,10 +211,12 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
         end = std::max(end, mem);
     }
     // output rows: after the constant block, avoiding the map
+    // (windowed rows: osize slots, plan_out_windows checked the room)
+    const int orows = fp.rl.owindows ? fp.rl.osize : fp.hbmax;
     fp.out = f.kbs;
-    if (fp.out < f.map + f.N && fp.out + fp.hbmax > f.map) fp.out = f.map + f.N;
-    if (fp.out + fp.hbmax > mem) throw rows_do_not_fit(fp.out + fp.hbmax, "the output rows", mem);
-    end = std::max(end, fp.out + fp.hbmax);
+    if (fp.out < f.map + f.N && fp.out + orows > f.map) fp.out = f.map + f.N;
+    if (fp.out + orows > mem) throw rows_do_not_fit(fp.out + orows, "the output rows", mem);
+    end = std::max(end, fp.out + orows);
     fp.mem_needed = end;
     fp.ext_needed = f.ext_needed;
 }

@@ -190,6 +190,18 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"DMIN", fp.rl.dmin},
                  {"DMAX", fp.rl.dmax},
                  {"SPARE", fp.spare ? 1 : 0},
+                 {"SKWIN", fp.rl.windows ? 1 : 0},
+                 {"SKWL0", fp.rl.wlo[0]},
+                 {"SKWH0", fp.rl.whi[0]},
+                 {"SKWL1", fp.rl.wlo[1]},
+                 {"SKWH1", fp.rl.whi[1]},
+                 {"SKRC", fp.rl.wrc},
+                 {"SKWB", fp.rl.wsize <= 256 ? 1 : 0},
+                 {"SKWO", fp.rl.owindows ? 1 : 0},
+                 {"SKOWL", fp.rl.owlo},
+                 {"SKOWH", fp.rl.owhi},
+                 {"SKORC", fp.rl.orc},
+                 {"SKOWB", fp.rl.osize <= 256 ? 1 : 0},
              });
 }
 
@@ -366,8 +378,9 @@ void dp_macros(std::ostringstream& os, const ForwardPlan& f, int spare_base = -1
 // receiver lanes of both kinds; PLAN_OUT with the output displacements.
 void relayout_macros(std::ostringstream& os, const FramePlan& fp) {
     os << ".macro PLAN_IN\n";
-    for (int g = 0; g < fp.nseg; ++g) {
-        const int W = seg_width(fp, g);
+    // windowed rows: one pass over the whole line (pixels X = lanes)
+    for (int g = 0; g < (fp.rl.windows ? 1 : fp.nseg); ++g) {
+        const int W = fp.rl.windows ? fp.f.N : seg_width(fp, g);
         int a0, n0, a1 = 0, n1 = 0;
         in_lanes(fp.f, fp.P, g, W, 0, &a0, &n0);
         if (fp.f.bidir) in_lanes(fp.f, fp.P, g, W, 1, &a1, &n1);
@@ -376,11 +389,11 @@ void relayout_macros(std::ostringstream& os, const FramePlan& fp) {
     }
     os << ".endm\n";
     os << ".macro PLAN_OUT\n";
-    for (int g = 0; g < fp.nseg; ++g) {
+    for (int g = 0; g < (fp.rl.owindows ? 1 : fp.nseg); ++g) {
         int smin, smax;
         detail::out_displacements(fp, g, &smin, &smax);
-        os << "        RELAYOUT_OUT " << g << ", " << seg_width(fp, g) << ", " << smin << ", "
-           << smax << "\n";
+        os << "        RELAYOUT_OUT " << g << ", " << (fp.rl.owindows ? fp.f.N : seg_width(fp, g))
+           << ", " << smin << ", " << smax << "\n";
     }
     os << ".endm\n";
 }

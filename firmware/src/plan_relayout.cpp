@@ -36,10 +36,140 @@ void for_each_receiver(const FramePlan& fp, int g, Take&& take) {
 // several batches). The lines sit so that the
 // input displacements d = base + kind - x are centred on 0, the output
 // displacements likewise (skew_out).
+int floor_div(int a, int b) {
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+// The shorter way round for a displacement d: d mod P in (-P/2, P/2].
+int fold(int d, int P) {
+    int r = ((d % P) + P) % P;
+    return r > P / 2 ? r - P : r;
+}
+
+// Windowed rows (docs/firmware.md, section 5; bidir, lines wider than the
+// ring): the kind copies' skewed rows of the whole line, window by window.
+// Round d (dmin .. dmax over the whole line, max(n0, n1) of them) moves
+// pixel base - d to kind 0 and base + 1 - skb - d to kind 1 of every line,
+// d mod P hops the shorter way round. The lines keep the direct placement
+// (base), so the output's direct routes are unchanged. Taken where both
+// images' rows fit the memory and the estimate of the input (video rows and
+// rounds) is below the direct routes'.
+void plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs) {
+    Relayout& rl = fp.rl;
+    const ForwardPlan& f = fp.f;
+    if (!f.bidir || f.census > 0 || f.agg > 0 || fp.spare || f.tiny || fp.rows_allowed < 3) return;
+    const int P = fp.P, H = fp.hbmax, N = f.N;
+    if (rl.base < 0 || rl.base + span * H > P) return;
+    int a[2], n[2];
+    for (int k = 0; k < 2; ++k) in_lanes(f, P, 0, N, k, &a[k], &n[k]);
+    if (n[0] == 0 || n[1] == 0) return;
+    const int skb = a[0] + 1 - a[1], off[2] = {0, skb};
+    const int nmax = std::max(n[0], n[1]);
+    const int dmin = rl.base - a[0] - (nmax - 1), dmax = rl.base - a[0];
+    int wlo[2], whi[2];
+    for (int k = 0; k < 2; ++k) {
+        wlo[k] = floor_div(a[k] + off[k], P);
+        whi[k] = floor_div(a[k] + n[k] - 1 + off[k] + span * (H - 1), P);
+    }
+    // row (q, t) at q - P t + rc; the senders read rows lane + d - base + rc
+    const int rc = std::max(P * std::max(whi[0], whi[1]), a[0] + nmax - 1);
+    const int top = std::max(span * H - 1 - P * std::min(wlo[0], wlo[1]), P - 1 - a[0]) + rc;
+    const int wsize = top + 1;
+    if (f.costl + 2 * wsize > mem) return;
+    // the estimate (relayout.inc): a video row two vin and about 6 CP
+    // cycles, about 10 more per window; a round 4 cycles of sending, 7 of
+    // storing, 2 |d mod P| of shifts; the direct routes' rounds per segment
+    // as plan_skew counts them
+    const int vl = costs.video_line, rh = costs.ring_hop;
+    int64_t win = 0;
+    for (int k = 0; k < 2; ++k) win += int64_t(whi[k] - wlo[k] + 1) * (10 + H * (2 * vl + 6));
+    for (int d = dmin; d <= dmax; ++d) win += 11 + 2 * std::abs(fold(d, P)) * rh;
+    int64_t direct = int64_t(fp.nseg) * H * (2 * vl + 4);
+    for (int u = 0; u < rl.ur; ++u) direct += fp.nseg * (44 + 2 * (2 * u + 2) * rh);
+    for (int u = 0; u < rl.ul; ++u) direct += fp.nseg * (49 + 2 * (2 * u + 3) * rh);
+    if (win >= direct) return;
+    rl.windows = true;
+    rl.copies = true;
+    rl.skb = skb;
+    rl.dmin = dmin;
+    rl.dmax = dmax;
+    rl.skew_in = 0;
+    for (int k = 0; k < 2; ++k) {
+        rl.wlo[k] = wlo[k];
+        rl.whi[k] = whi[k];
+    }
+    rl.wrc = rc;
+    rl.wsize = wsize;
+}
+
+// Windowed output rows (docs/firmware.md, section 5; lines wider than the
+// ring): every line's map pixels go out in one set of rounds over the whole
+// line, sigma = base - skew_out + kind - x the same on every line, d mod P
+// hops; each receiver stores every round at its own slot (no mask), so a
+// round costs a load, the shifts and a store. skew_out is picked for the
+// fewest hops. Taken where the rows fit beside the map and the estimate is
+// below the direct routes'.
+void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs) {
+    Relayout& rl = fp.rl;
+    const ForwardPlan& f = fp.f;
+    if (f.tiny || fp.spare || fp.rows_allowed < 3) return;
+    const int P = fp.P, H = fp.hbmax, N = f.N, B = rl.base;
+    if ((span == 2 && P % 2 != 0) || B < 0 || B + span * H > P) return;
+    const int nr = span == 2 ? (N + 1) / 2 : N;  // rounds: x0 = 0, span, ...
+    auto hops = [&](int sko) {
+        int64_t h = 0;
+        for (int i = 0; i < nr; ++i) h += std::abs(fold(B - sko - span * i, P));
+        return h;
+    };
+    const int centre = B - span * (nr - 1) / 2;
+    int sko = centre;
+    int64_t best = hops(centre);
+    for (int c = centre - P / 2; c < centre + P / 2; ++c)
+        if (const int64_t h = hops(c); h < best) {
+            best = h;
+            sko = c;
+        }
+    const int smax = B - sko, smin = smax - span * (nr - 1);
+    const int owlo = floor_div(sko, P), owhi = floor_div(N - 1 + sko + span * (H - 1), P);
+    const int per = P / span;  // slots per window
+    const int rlo = std::min(floor_div(smin - B, span), -per * owhi);
+    const int rhi = std::max(floor_div(P - 1 + smin - B, span) + nr - 1, H - 1 - per * owlo);
+    const int osize = rhi - rlo + 1;
+    int out = f.kbs;
+    if (out < f.map + N && out + osize > f.map) out = f.map + N;
+    if (out + osize > mem) return;
+    // the estimate (relayout.inc): a round 5 cycles and its hops, a window
+    // about 8 CP cycles and a vout per line; the direct routes about 18
+    // cycles a round and their hops, per segment
+    const int vl = costs.video_line, rh = costs.ring_hop;
+    const int64_t win = int64_t(nr) * 5 + best * rh + int64_t(owhi - owlo + 1) * (8 + H * (vl + 3));
+    int64_t direct = 0;
+    for (int g = 0; g < fp.nseg; ++g) {
+        int s0, s1;
+        out_displacements(fp, g, &s0, &s1);
+        for (int s = s0; s <= s1; s += span) direct += 18 + std::abs(s) * rh;
+        direct += H * (vl + 3);
+    }
+    if (win >= direct) return;
+    rl.owindows = true;
+    rl.skew_out = sko;
+    rl.smin = smin;
+    rl.smax = smax;
+    rl.owlo = owlo;
+    rl.owhi = owhi;
+    rl.orc = -rlo;
+    rl.osize = osize;
+}
+
 void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
                bool allow_copies = true) {
     Relayout& rl = fp.rl;
-    if (fp.nseg != 1 || fp.rows_allowed < 1) return;
+    if (fp.nseg > 1) {
+        plan_windows(fp, span, mem, costs);
+        plan_out_windows(fp, span, mem, costs);
+        return;
+    }
+    if (fp.rows_allowed < 1) return;
     // the census on skewed rows clamps its lines at HBMAX - 1 (assembly-time
     // hop counts, census.inc CENSUS_SKEWED), wrong for a shorter last batch
     if (fp.f.census > 0 && fp.batches.size() > 1) return;
@@ -171,7 +301,7 @@ struct Routes {
     }
     int pe_of(int y, int kind) const { return ((fp.rl.base + span * y + kind) % P + P) % P; }
     // lane of pixel x of line y in the video rows (input) and the output rows
-    int soff(int y) const { return fp.rl.skew ? fp.rl.skew_in + span * y : 0; }
+    int soff(int y) const { return fp.rl.skew || fp.rl.windows ? fp.rl.skew_in + span * y : 0; }
     // the copies of the video rows: lane offsets of line y's pixel 0 (kind
     // copies: kind 1's copy at skb + span * y too)
     int ncopies() const { return fp.rl.copies ? 2 : 1; }
@@ -207,7 +337,7 @@ struct Routes {
         for (int c = 0; c < ncopies(); ++c) best = std::min(best, ring(pe, x + coff(y, c)));
         return best;
     }
-    int ooff(int y) const { return fp.rl.skew ? fp.rl.skew_out + span * y : 0; }
+    int ooff(int y) const { return fp.rl.skew || fp.rl.owindows ? fp.rl.skew_out + span * y : 0; }
     // Pixels X of image img (0 = left, 1 = right) that kind `kind` needs: [lo, hi].
     void need(int img, int kind, int* lo, int* hi) const {
         *lo = 0;
@@ -267,39 +397,44 @@ void segment_hops(const Routes& r, int H, int g, int64_t* hops, int64_t* ohops) 
 // may be loaded at either: those count toward the loads spread over all P
 // lanes). Out: the lane a map pixel leaves through stores it unless it is one
 // of the line's PEs; the line's PEs load its pixels between them.
-void segment_mem(const Routes& r, int H, int g, int64_t* in, int64_t* out) {
-    const int W = seg_width(r.fp, g), X0 = g * r.P, P = r.P;
+// Segments g0 .. g1 together (the windowed rows' rounds move the whole
+// line's pixels; the output per segment).
+void segment_mem(const Routes& r, int H, int g0, int g1, int64_t* in, int64_t* out) {
+    const int P = r.P;
     std::vector<int> recv(P, 0), load(P, 0), ostore(P, 0);
     int64_t remote = 0, oload = 0;
     for (int y = 0; y < H; ++y) {
         int pes[2] = {r.pe_of(y, 0), r.pe_of(y, r.kinds - 1)};
         int oremote = 0;
-        for (int x = 0; x < W; ++x) {
-            const int X = X0 + x;
-            int lane[2] = {0, 0};
-            for (int c = 0; c < r.ncopies(); ++c) lane[c] = ((x + r.coff(y, c)) % P + P) % P;
-            auto local = [&](int pe) {
-                for (int c = 0; c < r.ncopies(); ++c)
-                    if (lane[c] == pe) return true;
-                return false;
-            };
-            for (int img = 0; img < 2; ++img) {
-                bool far = false;
-                for (int kind = 0; kind < r.kinds; ++kind) {
-                    int lo, hi;
-                    r.need(img, kind, &lo, &hi);
-                    if (X < lo || X > hi || local(pes[kind])) continue;
-                    ++recv[pes[kind]];
-                    far = true;
+        for (int g = g0; g <= g1; ++g) {
+            const int W = seg_width(r.fp, g), X0 = g * r.P;
+            for (int x = 0; x < W; ++x) {
+                const int X = X0 + x;
+                int lane[2] = {0, 0};
+                for (int c = 0; c < r.ncopies(); ++c) lane[c] = ((x + r.coff(y, c)) % P + P) % P;
+                auto local = [&](int pe) {
+                    for (int c = 0; c < r.ncopies(); ++c)
+                        if (lane[c] == pe) return true;
+                    return false;
+                };
+                for (int img = 0; img < 2; ++img) {
+                    bool far = false;
+                    for (int kind = 0; kind < r.kinds; ++kind) {
+                        int lo, hi;
+                        r.need(img, kind, &lo, &hi);
+                        if (X < lo || X > hi || local(pes[kind])) continue;
+                        ++recv[pes[kind]];
+                        far = true;
+                    }
+                    if (!far) continue;
+                    ++remote;
+                    if (r.ncopies() == 1) ++load[lane[0]];
                 }
-                if (!far) continue;
-                ++remote;
-                if (r.ncopies() == 1) ++load[lane[0]];
-            }
-            const int ol = ((x + r.ooff(y)) % P + P) % P;
-            if (ol != pes[0] && ol != pes[1]) {
-                ++ostore[ol];
-                ++oremote;
+                const int ol = ((x + r.ooff(y)) % P + P) % P;
+                if (ol != pes[0] && ol != pes[1]) {
+                    ++ostore[ol];
+                    ++oremote;
+                }
             }
         }
         oload = std::max<int64_t>(oload, (oremote + r.kinds - 1) / r.kinds);
@@ -416,7 +551,7 @@ void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {
     const int span = fp.span();
     *smin = INT_MAX;
     *smax = INT_MIN;
-    if (fp.rl.skew) {
+    if (fp.rl.skew || fp.rl.owindows) {
         *smin = fp.rl.smin;
         *smax = fp.rl.smax;
     } else if (fp.rl.modular) {
@@ -453,16 +588,30 @@ void relayout_bound(FramePlan& fp, const isa::CostTable& costs) {
     rl.mem_bound_in = rl.mem_bound_out = 0;
     for (const Batch& b : fp.batches) {
         const int H = b.lines;
-        for (int g = 0; g < fp.nseg; ++g) {
+        // The windowed rows move the whole line in one set of rounds (in,
+        // out): their cut and memory bounds over all segments at once (the
+        // arc's bytes summed, then the maximum); the direct routes run
+        // segment by segment.
+        const int ng = fp.nseg;
+        std::vector<int64_t> arc_in, arc_out;
+        int64_t hops_all = 0, ohops_all = 0, m_in_all = 0, m_out_all = 0;
+        for (int g = 0; g < ng; ++g) {
             int64_t hops = 0, ohops = 0;
             detail::segment_hops(r, H, g, &hops, &ohops);
             int64_t cut = 0, ocut = 0;
+            size_t ai = 0;
             for (int a = 0; a < P; a += step)
-                for (int len = step; len < P; len += step) {
+                for (int len = step; len < P; len += step, ++ai) {
                     int64_t c_in = 0, c_out = 0;
                     detail::arc_bytes(r, H, g, a, len, &c_in, &c_out);
                     cut = std::max(cut, c_in);
                     ocut = std::max(ocut, c_out);
+                    if (ai == arc_in.size()) {
+                        arc_in.push_back(0);
+                        arc_out.push_back(0);
+                    }
+                    arc_in[ai] += c_in;
+                    arc_out[ai] += c_out;
                 }
             // census frames: every needed pixel comes with its code (a second
             // pair of rows over the same routes), twice the bytes in; the
@@ -471,15 +620,40 @@ void relayout_bound(FramePlan& fp, const isa::CostTable& costs) {
             hops *= per;
             cut *= per;
             const int64_t hb_in = (hops + P - 1) / P, hb_out = (ohops + P - 1) / P;
-            rl.ring_bound_in += std::max(hb_in, cut) * costs.ring_hop;
-            rl.ring_bound_out += std::max(hb_out, ocut) * costs.ring_hop;
-            rl.hop_bound_in += hb_in * costs.ring_hop;
-            rl.hop_bound_out += hb_out * costs.ring_hop;
+            if (!rl.windows) {
+                rl.ring_bound_in += std::max(hb_in, cut) * costs.ring_hop;
+                rl.hop_bound_in += hb_in * costs.ring_hop;
+            }
+            if (!rl.owindows) {
+                rl.ring_bound_out += std::max(hb_out, ocut) * costs.ring_hop;
+                rl.hop_bound_out += hb_out * costs.ring_hop;
+            }
+            hops_all += hops;
+            ohops_all += ohops;
             int64_t m_in = 0, m_out = 0;
-            detail::segment_mem(r, H, g, &m_in, &m_out);
-            rl.mem_bound_in += m_in * costs.mem;
-            rl.mem_bound_out += m_out * costs.mem;
+            detail::segment_mem(r, H, g, g, &m_in, &m_out);
+            m_in_all += m_in;
+            m_out_all += m_out;
         }
+        auto most = [](const std::vector<int64_t>& v) {
+            return v.empty() ? int64_t{0} : *std::max_element(v.begin(), v.end());
+        };
+        int64_t m_in = 0, m_out = 0;
+        if (rl.windows || rl.owindows) detail::segment_mem(r, H, 0, ng - 1, &m_in, &m_out);
+        if (rl.windows) {
+            const int64_t hb_in = (hops_all + P - 1) / P;
+            rl.ring_bound_in += std::max(hb_in, most(arc_in)) * costs.ring_hop;
+            rl.hop_bound_in += hb_in * costs.ring_hop;
+            m_in_all = m_in;
+        }
+        if (rl.owindows) {
+            const int64_t hb_out = (ohops_all + P - 1) / P;
+            rl.ring_bound_out += std::max(hb_out, most(arc_out)) * costs.ring_hop;
+            rl.hop_bound_out += hb_out * costs.ring_hop;
+            m_out_all = m_out;
+        }
+        rl.mem_bound_in += m_in_all * costs.mem;
+        rl.mem_bound_out += m_out_all * costs.mem;
     }
     rl.bound_in = rl.ring_bound_in + rl.mem_bound_in;
     rl.bound_out = rl.ring_bound_out + rl.mem_bound_out;

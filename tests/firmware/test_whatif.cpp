@@ -79,6 +79,71 @@ BOOST_AUTO_TEST_CASE(relayout_of_the_paper_roi_within_2x_of_its_bound) {
     }
 }
 
+BOOST_AUTO_TEST_CASE(windowed_rows_take_lines_wider_than_the_ring) {
+    // Lines wider than the ring (several video segments): the kind copies'
+    // skewed rows come in window by window (bidir, joint) and the output's
+    // go out the same way (every mode), one set of rounds over the whole
+    // line each (docs/firmware.md, section 5). Random ROIs inside larger
+    // images (the windows' columns start left of the ROI and pass its end),
+    // batches, both kinds' ranges; every frame bit-exact, never below its
+    // bound, and the planner takes the windows on most.
+    std::mt19937 rng(2026);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    int taken = 0, otaken = 0, runs = 0, copies = 0;
+    for (int it = 0; it < 24; ++it) {
+        const int P = std::vector<int>{8, 12, 16, 32, 64}[size_t(uni(0, 4))];
+        g::Roi roi;
+        roi.w = uni(P + 1, std::min(4 * P, 160));
+        roi.h = uni(3, 24);
+        const int W = roi.w + uni(0, 9), H = roi.h + uni(0, 3);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, H - roi.h);
+        g::Params p = random_params(rng, roi.w);
+        const int mode = uni(0, 3);
+        p.mode = mode == 0 ? g::Mode::Single : mode == 1 ? g::Mode::Joint : g::Mode::Bidir;
+        if (p.mode == g::Mode::Joint) {
+            p.seed_disp.free = true;
+            p.km = std::max(p.km, 1);
+        } else if (!p.seed_disp.free) {
+            p.seed_disp.value = std::min(
+                p.seed_disp.value, std::min(p.D - 1, roi.w - 1 - g::resolve_seed_col(p, roi.w)));
+        }
+        const Frame fr = random_frame(rng, W, H, p.D);
+        isa::MachineConfig cfg;
+        cfg.pes = uint32_t(P);
+        BOOST_TEST_CONTEXT(describe(p, roi.w, roi.h)
+                           << " vote=" << p.vote << " frame=" << g::to_string(p.frame) << " P=" << P
+                           << " roi=" << roi.x0 << "," << roi.y0 << " image " << W << "x" << H) {
+            fw::FramePlan plan;
+            try {
+                plan = fw::plan_frame(p, roi, cfg);
+            } catch (const fw::FirmwareError& e) {
+                BOOST_TEST_MESSAGE("refused: " << e.what());
+                continue;
+            }
+            BOOST_REQUIRE(plan.nseg > 1);
+            const fw::FrameResult r = fw::run_frame_core(plan, fw::assemble_frame(p, plan),
+                                                         g::ImageView{fr.L.data(), W, H, W},
+                                                         g::ImageView{fr.R.data(), W, H, W}, cfg);
+            const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), W, H, W},
+                                                    g::ImageView{fr.R.data(), W, H, W}, roi);
+            BOOST_TEST(r.map.data == want.data);
+            BOOST_TEST(plan.rl.bound_in <= int64_t(r.relayout_in));
+            BOOST_TEST(plan.rl.bound_out <= int64_t(r.relayout_out));
+            ++runs;
+            copies += p.mode != g::Mode::Single ? 1 : 0;
+            taken += plan.rl.windows ? 1 : 0;
+            otaken += plan.rl.owindows ? 1 : 0;
+        }
+    }
+    BOOST_TEST_MESSAGE("windowed rows in on " << taken << " of " << copies
+                                              << " bidir / joint frames, out on " << otaken
+                                              << " of " << runs);
+    BOOST_TEST(runs >= 16);
+    BOOST_TEST(taken * 4 >= copies * 3);
+    BOOST_TEST(otaken * 4 >= runs * 3);
+}
+
 BOOST_AUTO_TEST_CASE(planner_picks_the_fastest_rows) {
     // Every placement of the video rows runs bit-exact; the planner's pick
     // (Fastest: skewed, wrapped, kind copies where its estimate favours
@@ -121,10 +186,11 @@ BOOST_AUTO_TEST_CASE(planner_picks_the_fastest_rows) {
                 cost[rows] = phase(r, "video_in") + phase(r, "relayout_in") +
                              phase(r, "relayout_out") + phase(r, "video_out");
                 msg << " " << rows << ": " << cost[rows]
-                    << (plan.rl.skew ? (plan.rl.copies ? " (copies)"
-                                        : plan.rl.wrap ? " (wrapped)"
-                                                       : " (skewed)")
-                                     : " (direct)")
+                    << (plan.rl.windows ? " (windowed)"
+                        : plan.rl.skew  ? (plan.rl.copies ? " (copies)"
+                                           : plan.rl.wrap ? " (wrapped)"
+                                                          : " (skewed)")
+                                        : " (direct)")
                     << " [in " << r.relayout_in << " / bound " << plan.rl.bound_in << ", out "
                     << r.relayout_out << " / " << plan.rl.bound_out << ", frame " << r.cycles
                     << "]";

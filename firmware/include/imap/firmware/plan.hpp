@@ -201,6 +201,25 @@ struct Relayout {
     int ybb = 0, ywb1 = 0, ywb2 = 0;
     int skew_in = 0, skew_out = 0;
     int dmin = 0, dmax = 0, smin = 0, smax = 0;
+    // Windowed rows (bidir, lines wider than the ring: several video
+    // segments; the input only, the output keeps the direct routes): copy k
+    // of line y comes in window by window, window t from column X0 + t P -
+    // (k ? skb : 0) - span*y, so pixel X of the copy sits on lane (X + (k ?
+    // skb : 0) + span*y) mod P and every line's items share one displacement
+    // mod P per pixel; window t of row q = span*y + k is stored at row index
+    // q - P t + wrc (wsize rows per image), so round d's sender reads row
+    // lane + d - base + wrc, whichever window its receiver's pixel lies in.
+    bool windows = false;
+    int wlo[2] = {0, 0}, whi[2] = {0, 0};  // the windows t of copy k
+    int wrc = 0, wsize = 0;
+    // Windowed output rows (several video segments): pixel x of line y goes
+    // to lane (x + skew_out + span*y) mod P, rounds sigma = smin .. smax
+    // (step 2 in bidir mode) over the whole line, d mod P hops; round i's
+    // receiver stores at slot floor((lane + smin - base) / span) + orc + i,
+    // which is row y - (P / span) t + orc of window t (osize rows); window t
+    // of line y goes out from column t P - skew_out - span*y.
+    bool owindows = false;
+    int owlo = 0, owhi = 0, orc = 0, osize = 0;
     // The re-layout's lower bound (relayout_bound), summed over batches:
     // bound = ring + mem; ring = the ring instructions' cycles (the larger
     // of the hop and cut bounds), hop = the byte-hop part of it, mem = the
