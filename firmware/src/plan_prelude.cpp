@@ -201,7 +201,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"SKOWL", fp.rl.owlo},
                  {"SKOWH", fp.rl.owhi},
                  {"SKORC", fp.rl.orc},
-                 {"SKOWB", fp.rl.osize <= 256 ? 1 : 0},
+                 {"SKOWB", fp.rl.osize <= 256 || fp.rl.owrap ? 1 : 0},
              });
 }
 

@@ -102,55 +102,87 @@ void plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs)
     rl.wsize = wsize;
 }
 
-// Windowed output rows (docs/firmware.md, section 5; lines wider than the
-// ring): every line's map pixels go out in one set of rounds over the whole
-// line, sigma = base - skew_out + kind - x the same on every line, d mod P
-// hops; each receiver stores every round at its own slot (no mask), so a
-// round costs a load, the shifts and a store. skew_out is picked for the
-// fewest hops. Taken where the rows fit beside the map and the estimate is
-// below the direct routes'.
+// Windowed output rows (docs/firmware.md, section 5): every line's map
+// pixels go out in one set of rounds over the whole line, sigma = base -
+// skew_out + kind - x the same on every line, sigma mod P hops; each
+// receiver stores every round at its own slot (no mask), so a round costs a
+// load, the shifts and a store. skew_out is picked for the fewest hops. The
+// lines may sit anywhere on the ring (the slots follow from the receiver's
+// lane). Taken where the rows fit beside the map and the estimate is below
+// that of the output the plan has (skewed rows or direct routes).
 void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs) {
     Relayout& rl = fp.rl;
     const ForwardPlan& f = fp.f;
-    if (f.tiny || fp.spare || fp.rows_allowed < 3) return;
+    if (f.tiny || fp.rows_allowed < 3) return;
     const int P = fp.P, H = fp.hbmax, N = f.N, B = rl.base;
-    if ((span == 2 && P % 2 != 0) || B < 0 || B + span * H > P) return;
-    const int nr = span == 2 ? (N + 1) / 2 : N;  // rounds: x0 = 0, span, ...
-    auto hops = [&](int sko) {
-        int64_t h = 0;
-        for (int i = 0; i < nr; ++i) h += std::abs(fold(B - sko - span * i, P));
-        return h;
+    if (span == 2 && P % 2 != 0) return;
+    // rounds: x0 = 0, step, ... (bidir: both kinds' pixels in one round; the
+    // spare layout: one line PE per span of 2, every pixel)
+    const int step = f.bidir ? 2 : 1;
+    const int nr = (N + step - 1) / step;
+    // the estimate (relayout.inc): a round 5 cycles and its hops; a window
+    // about 7 CP cycles and a vout, 3 caddi and the loop per line
+    const int vl = costs.video_line, rh = costs.ring_hop;
+    auto windows = [&](int sko) {
+        return floor_div(N - 1 + sko + span * (H - 1), P) - floor_div(sko, P) + 1;
     };
-    const int centre = B - span * (nr - 1) / 2;
+    auto estimate = [&](int sko) {
+        int64_t h = 0;
+        for (int i = 0; i < nr; ++i) h += std::abs(fold(B - sko - step * i, P));
+        return int64_t(nr) * 5 + h * rh + int64_t(windows(sko)) * (7 + H * (vl + 4));
+    };
+    // skew_out for the least estimate: hops against windows
+    const int centre = B - step * (nr - 1) / 2;
     int sko = centre;
-    int64_t best = hops(centre);
+    int64_t win = estimate(centre);
     for (int c = centre - P / 2; c < centre + P / 2; ++c)
-        if (const int64_t h = hops(c); h < best) {
-            best = h;
+        if (const int64_t e = estimate(c); e < win) {
+            win = e;
             sko = c;
         }
-    const int smax = B - sko, smin = smax - span * (nr - 1);
+    const int smax = B - sko, smin = smax - step * (nr - 1);
     const int owlo = floor_div(sko, P), owhi = floor_div(N - 1 + sko + span * (H - 1), P);
     const int per = P / span;  // slots per window
-    const int rlo = std::min(floor_div(smin - B, span), -per * owhi);
-    const int rhi = std::max(floor_div(P - 1 + smin - B, span) + nr - 1, H - 1 - per * owlo);
-    const int osize = rhi - rlo + 1;
-    int out = f.kbs;
-    if (out < f.map + N && out + osize > f.map) out = f.map + N;
-    if (out + osize > mem) return;
-    // the estimate (relayout.inc): a round 5 cycles and its hops, a window
-    // about 8 CP cycles and a vout per line; the direct routes about 18
-    // cycles a round and their hops, per segment
-    const int vl = costs.video_line, rh = costs.ring_hop;
-    const int64_t win = int64_t(nr) * 5 + best * rh + int64_t(owhi - owlo + 1) * (8 + H * (vl + 3));
-    int64_t direct = 0;
+    // The receivers' slots, and where the rows go (after the constant
+    // block, else past the map). Where they do not fit and there is one
+    // window whose rows' lanes use fewer than 256 slots, the receivers keep
+    // the slot's low byte (relayout.inc, SKOWB): every lane writes within
+    // 256 + adv bytes and the rows' lanes at their exact slots, at no cost.
+    // adv: how far a receiver's slot advances over the rounds (the spare
+    // layout's slot is ceil(u / 2): one more).
+    const int adv = (nr - 1) * step / span + (fp.spare ? 1 : 0);
+    int rlo = 0, osize = 0, out = 0;
+    auto place = [&](int lo, int hi, bool wrap) {
+        rlo = std::min(floor_div(lo + smin - B, span), -per * owhi);
+        const int rhi = std::max(floor_div(hi + smin - B, span) + adv, H - 1 - per * owlo);
+        osize = rhi - rlo + 1;
+        if (wrap) {
+            if (osize > 256) return false;
+            osize = 256 + adv;
+        }
+        out = f.kbs;
+        if (out < f.map + N && out + osize > f.map) out = f.map + N;
+        return out + osize <= mem;
+    };
+    bool wrap = false;
+    if (!place(0, P - 1, false)) {
+        const int lo = sko - P * owlo;
+        if (owlo != owhi || !place(lo, lo + N - 1 + span * (H - 1), true)) return;
+        wrap = true;
+    }
+    // the output the plan has: the skewed rows' rounds about 13 cycles (17
+    // around the ring, and a second vout per wrapped line), the direct
+    // routes' 18, and their hops, per segment
+    int64_t now = 0;
     for (int g = 0; g < fp.nseg; ++g) {
         int s0, s1;
         out_displacements(fp, g, &s0, &s1);
-        for (int s = s0; s <= s1; s += span) direct += 18 + std::abs(s) * rh;
-        direct += H * (vl + 3);
+        const int fixed = rl.skew ? (rl.wrap ? 17 : 13) : 18;
+        for (int s = s0; s <= s1; s += step) now += fixed + std::abs(s) * rh;
+        now += 7 + H * (vl + 4);
+        if (rl.skew && rl.wrap) now += 7 + std::max(0, H - rl.ywo) * (vl + 4);
     }
-    if (win >= direct) return;
+    if (win >= now) return;
     rl.owindows = true;
     rl.skew_out = sko;
     rl.smin = smin;
@@ -159,6 +191,7 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     rl.owhi = owhi;
     rl.orc = -rlo;
     rl.osize = osize;
+    rl.owrap = wrap;
 }
 
 void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
@@ -525,6 +558,7 @@ void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
         rl.our = P / 2;  // sigma = our_min .. our_min + step*(n-1): stored as min and count
         rl.oul = 0;
         plan_skew(fp, span, mem, costs);
+        plan_out_windows(fp, span, mem, costs);
         return;
     }
     const int reg = span * fp.hbmax;
@@ -544,6 +578,7 @@ void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
         rl.ul = hl;
     }
     plan_skew(fp, span, mem, costs);
+    if (fp.nseg == 1) plan_out_windows(fp, span, mem, costs);
 }
 
 void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {

@@ -220,6 +220,7 @@ struct Relayout {
     // of line y goes out from column t P - skew_out - span*y.
     bool owindows = false;
     int owlo = 0, owhi = 0, orc = 0, osize = 0;
+    bool owrap = false;  // the slots' low byte (osize = 256 + rounds)
     // The re-layout's lower bound (relayout_bound), summed over batches:
     // bound = ring + mem; ring = the ring instructions' cycles (the larger
     // of the hop and cut bounds), hop = the byte-hop part of it, mem = the
