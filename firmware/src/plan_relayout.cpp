@@ -106,10 +106,11 @@ void plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs)
 // pixels go out in one set of rounds over the whole line, sigma = base -
 // skew_out + kind - x the same on every line, sigma mod P hops; each
 // receiver stores every round at its own slot (no mask), so a round costs a
-// load, the shifts and a store. skew_out is picked for the fewest hops. The
-// lines may sit anywhere on the ring (the slots follow from the receiver's
-// lane). Taken where the rows fit beside the map and the estimate is below
-// that of the output the plan has (skewed rows or direct routes).
+// load, the shifts and a store. skew_out is picked for the least estimate
+// (hops against windows, each a vout per line). The lines may sit anywhere
+// on the ring (the slots follow from the receiver's lane). Taken where the
+// rows fit beside the map and the estimate is below that of the output the
+// plan has (skewed rows or direct routes).
 void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs) {
     Relayout& rl = fp.rl;
     const ForwardPlan& f = fp.f;
