@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "imap/firmware/plan.hpp"
 
@@ -19,6 +21,11 @@ inline constexpr int kNever = INT_MAX;  // an address that never holds pointers
 
 inline int ceil_div(int a, int b) {
     return (a + b - 1) / b;
+}
+
+// a / b rounded towards minus infinity (b > 0).
+inline int floor_div(int a, int b) {
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
 // The local memory the planner uses per PE: mem_bytes, at most 1 MiB.
@@ -34,6 +41,14 @@ void check_range(const golden::Params& p);
 // Refuses the SPEC A.9 options the firmware does not run (census_ok: the
 // full firmware, else the forward-pass test layout).
 void check_options(const golden::Params& p, bool census_ok);
+
+// ---- plan_relayout.cpp ----
+// Pixels x of [lo, hi] (hi - lo < P, 1 <= len <= P) whose lane x + off
+// (mod P; off any integer) lies in the arc [a, a + len) of the ring of P
+// lanes, appended to *iv as disjoint intervals of x (the cut bound's
+// pixels already inside an arc, relayout_bound).
+void arc_pixels(int P, int lo, int hi, int off, int a, int len,
+                std::vector<std::pair<int, int>>* iv);
 
 // ---- plan_forward.cpp ----
 // The forward plan of scanlines of length N; `tiny`: every pointer table in

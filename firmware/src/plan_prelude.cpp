@@ -183,7 +183,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
                  {"YBB", fp.rl.ybb},
                  {"YWB1", fp.rl.ywb1},
                  {"YWB2", fp.rl.ywb2},
-                 {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : fp.rl.skew_in) - fp.rl.dmin + 1},
+                 {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : 0) - fp.rl.skew_in - fp.rl.dmin + 1},
                  {"SKI", fp.rl.skew_in},
                  {"SKO", fp.rl.skew_out},
                  {"SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin},

@@ -14,6 +14,16 @@ namespace imap::firmware {
 
 namespace detail {
 
+void arc_pixels(int P, int lo, int hi, int off, int a, int len,
+                std::vector<std::pair<int, int>>* iv) {
+    // x = a - off + t + k P, t in [0, len), for every k that meets [lo, hi]
+    const int x0 = a - off;
+    for (int k = floor_div(lo - x0 - len + 1, P); k <= floor_div(hi - x0, P); ++k) {
+        const int b0 = std::max(lo, x0 + k * P), b1 = std::min(hi, x0 + k * P + len - 1);
+        if (b0 <= b1) iv->push_back({b0, b1});
+    }
+}
+
 namespace {
 
 // Calls take(kind, a, n) for every kind that receives source lanes [a, a + n)
@@ -36,70 +46,98 @@ void for_each_receiver(const FramePlan& fp, int g, Take&& take) {
 // several batches). The lines sit so that the
 // input displacements d = base + kind - x are centred on 0, the output
 // displacements likewise (skew_out).
-int floor_div(int a, int b) {
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
 // The shorter way round for a displacement d: d mod P in (-P/2, P/2].
 int fold(int d, int P) {
     int r = ((d % P) + P) % P;
     return r > P / 2 ? r - P : r;
 }
 
-// Windowed rows (docs/firmware.md, section 5; bidir, lines wider than the
-// ring): the kind copies' skewed rows of the whole line, window by window.
-// Round d (dmin .. dmax over the whole line, max(n0, n1) of them) moves
-// pixel base - d to kind 0 and base + 1 - skb - d to kind 1 of every line,
-// d mod P hops the shorter way round. The lines keep the direct placement
-// (base), so the output's direct routes are unchanged. Taken where both
-// images' rows fit the memory and the estimate of the input (video rows and
-// rounds) is below the direct routes'.
-void plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs) {
+// CP cycles a video line costs beside its vin or vout (relayout.inc,
+// LINES4): where up to 8 lines or more may come, 2 caddi a line and the
+// loop's 3 cycles a turn of four (rounded up to 3 a line); else 3 caddi and
+// the taken loop's 2.
+int line_cp(int lines) {
+    return lines >= 8 ? 3 : 5;
+}
+
+// Windowed rows (docs/firmware.md, section 5; bidir): the kind copies'
+// skewed rows of the whole line, window by window, pixel x of copy k of line
+// y at unrolled lane x + (k ? skb : 0) + wi + span y. Round d (over the
+// whole line, max(n0, n1) of them) moves pixel base - d to kind 0 and
+// base + 1 - skb - d to kind 1 of every line, d - wi hops (mod P, the
+// shorter way round); wi (skew_in) centres them. The lines keep the direct
+// placement (base), so the output's direct routes are unchanged. Taken
+// where both images' rows fit the memory and the estimate of the input
+// (video rows and rounds) is below `limit` (< 0: the direct routes').
+// Returns the estimate taken, or -1.
+int64_t plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
+                     int64_t limit = -1) {
     Relayout& rl = fp.rl;
     const ForwardPlan& f = fp.f;
-    if (!f.bidir || f.census > 0 || f.agg > 0 || fp.spare || f.tiny || fp.rows_allowed < 3) return;
+    if (!f.bidir || f.census > 0 || f.agg > 0 || fp.spare || f.tiny || fp.rows_allowed < 3)
+        return -1;
     const int P = fp.P, H = fp.hbmax, N = f.N;
-    if (rl.base < 0 || rl.base + span * H > P) return;
+    if (rl.base < 0 || rl.base + span * H > P) return -1;
     int a[2], n[2];
     for (int k = 0; k < 2; ++k) in_lanes(f, P, 0, N, k, &a[k], &n[k]);
-    if (n[0] == 0 || n[1] == 0) return;
-    const int skb = a[0] + 1 - a[1], off[2] = {0, skb};
+    if (n[0] == 0 || n[1] == 0) return -1;
+    const int skb = a[0] + 1 - a[1];
     const int nmax = std::max(n[0], n[1]);
-    const int dmin = rl.base - a[0] - (nmax - 1), dmax = rl.base - a[0];
-    int wlo[2], whi[2];
-    for (int k = 0; k < 2; ++k) {
-        wlo[k] = floor_div(a[k] + off[k], P);
-        whi[k] = floor_div(a[k] + n[k] - 1 + off[k] + span * (H - 1), P);
-    }
-    // row (q, t) at q - P t + rc; the senders read rows lane + d - base + rc
-    const int rc = std::max(P * std::max(whi[0], whi[1]), a[0] + nmax - 1);
-    const int top = std::max(span * H - 1 - P * std::min(wlo[0], wlo[1]), P - 1 - a[0]) + rc;
-    const int wsize = top + 1;
-    if (f.costl + 2 * wsize > mem) return;
-    // the estimate (relayout.inc): a video row two vin and about 6 CP
-    // cycles, about 10 more per window; a round 4 cycles of sending, 7 of
-    // storing, 2 |d mod P| of shifts; the direct routes' rounds per segment
-    // as plan_skew counts them
+    // pixel displacements: d = base - x for kind 0's pixel x
+    const int d0 = rl.base - a[0] - (nmax - 1), d1 = rl.base - a[0];
+    // the estimate (relayout.inc): a video row two vin and its CP cycles
+    // (line_cp), about 10 more per window; a round 4 cycles of sending, 7 of
+    // storing, 2 |d - wi mod P| of shifts; the direct routes' rounds per
+    // segment as plan_skew counts them
     const int vl = costs.video_line, rh = costs.ring_hop;
-    int64_t win = 0;
-    for (int k = 0; k < 2; ++k) win += int64_t(whi[k] - wlo[k] + 1) * (10 + H * (2 * vl + 6));
-    for (int d = dmin; d <= dmax; ++d) win += 11 + 2 * std::abs(fold(d, P)) * rh;
-    int64_t direct = int64_t(fp.nseg) * H * (2 * vl + 4);
-    for (int u = 0; u < rl.ur; ++u) direct += fp.nseg * (44 + 2 * (2 * u + 2) * rh);
-    for (int u = 0; u < rl.ul; ++u) direct += fp.nseg * (49 + 2 * (2 * u + 3) * rh);
-    if (win >= direct) return;
+    if (limit < 0) {
+        limit = int64_t(fp.nseg) * H * (2 * vl + line_cp(H));
+        for (int u = 0; u < rl.ur; ++u) limit += fp.nseg * (44 + 2 * (2 * u + 2) * rh);
+        for (int u = 0; u < rl.ul; ++u) limit += fp.nseg * (49 + 2 * (2 * u + 3) * rh);
+    }
+    struct Pick {
+        int wi, wlo[2], whi[2], rc, wsize;
+    } best{};
+    int64_t best_e = -1;
+    const int centre = (d0 + d1) / 2;
+    for (int wi = centre - P / 2; wi < centre + P / 2; ++wi) {
+        Pick c{};
+        c.wi = wi;
+        const int off[2] = {wi, skb + wi};
+        for (int k = 0; k < 2; ++k) {
+            c.wlo[k] = floor_div(a[k] + off[k], P);
+            c.whi[k] = floor_div(a[k] + n[k] - 1 + off[k] + span * (H - 1), P);
+        }
+        // row (q, t) at q - P t + rc; the senders read rows lane + (d - wi) -
+        // base + rc
+        const int e = a[0] + wi;
+        c.rc = std::max({0, P * std::max(c.whi[0], c.whi[1]), e + nmax - 1});
+        const int top = std::max(span * H - 1 - P * std::min(c.wlo[0], c.wlo[1]), P - 1 - e) + c.rc;
+        c.wsize = top + 1;
+        if (f.costl + 2 * c.wsize > mem) continue;
+        int64_t est = 0;
+        for (int k = 0; k < 2; ++k)
+            est += int64_t(c.whi[k] - c.wlo[k] + 1) * (10 + H * (2 * vl + line_cp(H)));
+        for (int d = d0; d <= d1; ++d) est += 11 + 2 * std::abs(fold(d - wi, P)) * rh;
+        if (best_e < 0 || est < best_e) {
+            best_e = est;
+            best = c;
+        }
+    }
+    if (best_e < 0 || best_e >= limit) return -1;
     rl.windows = true;
     rl.copies = true;
     rl.skb = skb;
-    rl.dmin = dmin;
-    rl.dmax = dmax;
-    rl.skew_in = 0;
+    rl.skew_in = best.wi;
+    rl.dmin = d0 - best.wi;
+    rl.dmax = d1 - best.wi;
     for (int k = 0; k < 2; ++k) {
-        rl.wlo[k] = wlo[k];
-        rl.whi[k] = whi[k];
+        rl.wlo[k] = best.wlo[k];
+        rl.whi[k] = best.whi[k];
     }
-    rl.wrc = rc;
-    rl.wsize = wsize;
+    rl.wrc = best.rc;
+    rl.wsize = best.wsize;
+    return best_e;
 }
 
 // Windowed output rows (docs/firmware.md, section 5): every line's map
@@ -122,7 +160,7 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     const int step = f.bidir ? 2 : 1;
     const int nr = (N + step - 1) / step;
     // the estimate (relayout.inc): a round 5 cycles and its hops; a window
-    // about 7 CP cycles and a vout, 3 caddi and the loop per line
+    // about 7 CP cycles and a vout and its CP cycles (line_cp) per line
     const int vl = costs.video_line, rh = costs.ring_hop;
     auto windows = [&](int sko) {
         return floor_div(N - 1 + sko + span * (H - 1), P) - floor_div(sko, P) + 1;
@@ -130,7 +168,7 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     auto estimate = [&](int sko) {
         int64_t h = 0;
         for (int i = 0; i < nr; ++i) h += std::abs(fold(B - sko - step * i, P));
-        return int64_t(nr) * 5 + h * rh + int64_t(windows(sko)) * (7 + H * (vl + 4));
+        return int64_t(nr) * 5 + h * rh + int64_t(windows(sko)) * (7 + H * (vl + line_cp(H)));
     };
     // skew_out for the least estimate: hops against windows
     const int centre = B - step * (nr - 1) / 2;
@@ -180,8 +218,8 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
         out_displacements(fp, g, &s0, &s1);
         const int fixed = rl.skew ? (rl.wrap ? 17 : 13) : 18;
         for (int s = s0; s <= s1; s += step) now += fixed + std::abs(s) * rh;
-        now += 7 + H * (vl + 4);
-        if (rl.skew && rl.wrap) now += 7 + std::max(0, H - rl.ywo) * (vl + 4);
+        now += 7 + H * (vl + line_cp(H));
+        if (rl.skew && rl.wrap) now += 7 + std::max(0, H - rl.ywo) * (vl + line_cp(H - rl.ywo));
     }
     if (win >= now) return;
     rl.owindows = true;
@@ -247,9 +285,9 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // cost table's video_line and ring_hop, one cycle for the rest): a
     // skewed round sends (about 14 cycles, 21 around the ring, 22 with kind
     // copies), shifts 2 |d| hops and stores (15); a video row costs its two
-    // vin and 4 CP cycles, a row past the ring's end two vin and about 20
-    // more. The direct routes' rounds: 2u and 2u + 1 hops with two stores
-    // (44 cycles; bidir) or u hops with one (27; single).
+    // vin and its CP cycles (line_cp), a row past the ring's end two vin,
+    // 10 cycles of merging and its CP cycles more. The direct routes' rounds: 2u and 2u + 1 hops
+    // with two stores (44 cycles; bidir) or u hops with one (27; single).
     const int vl = costs.video_line, rh = costs.ring_hop;
     auto wraps = [&](int off) {  // lines whose row from lane off + span y passes P - 1
         int c = 0;
@@ -257,7 +295,8 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         return c;
     };
     auto rows_cost = [&](int copies_n, int wrapped) {
-        return int64_t(copies_n) * H * (2 * vl + 4) + int64_t(wrapped) * (2 * vl + 20);
+        return int64_t(copies_n) * H * (2 * vl + line_cp(H)) +
+               int64_t(wrapped) * (2 * vl + 10 + line_cp(wrapped));
     };
     auto skew_cost = [&](int d0, int d1, int send) {
         int64_t c = 0;
@@ -275,7 +314,7 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     }
     if (copies) {
         const int64_t two_rows = skew_cost(base + lo2, base + hi2, 22) + rows_cost(2, wraps(0)) +
-                                 int64_t(wraps(skb)) * (2 * vl + 20);
+                                 int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)));
         // the base above was centred for the copies; without them the
         // single copy's rounds are centred on their own range
         const int b1 = std::max(0, -((lo + hi) / 2));
@@ -314,6 +353,17 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     rl.skew_out = skew_out;
     rl.dmin = base + lo;
     rl.dmax = base + hi;
+    // the rounds as counted in relayout.inc (RSK_SEND, RSK_RECV): the kind
+    // copies' senders 5 cycles (10 where rows are taken mod P), the single
+    // copy's 8 (12 around the ring), the stores 7, and the shifts
+    {
+        const int send = copies ? (P % 256 == 0 ? 5 : 10) : (wrap ? 12 : 8);
+        int64_t e = copies ? rows_cost(2, wraps(0)) +
+                                 int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)))
+                           : rows_cost(1, wrap ? wraps(0) : 0);
+        for (int d = rl.dmin; d <= rl.dmax; ++d) e += send + 7 + 2 * std::abs(d) * rh;
+        rl.skew_estimate = e;
+    }
     rl.smin = base - skew_out + olo;
     rl.smax = base - skew_out + ohi;
     rl.ur = rl.ul = 0;
@@ -337,25 +387,14 @@ struct Routes {
     // lane of pixel x of line y in the video rows (input) and the output rows
     int soff(int y) const { return fp.rl.skew || fp.rl.windows ? fp.rl.skew_in + span * y : 0; }
     // the copies of the video rows: lane offsets of line y's pixel 0 (kind
-    // copies: kind 1's copy at skb + span * y too)
+    // copies: kind 1's copy skb lanes further)
     int ncopies() const { return fp.rl.copies ? 2 : 1; }
-    int coff(int y, int c) const { return c == 0 ? soff(y) : fp.rl.skb + span * y; }
-    // Pixels x of [lo, hi] (hi - lo < P) whose lane x + off (mod P) lies in
-    // the arc [a, a + len), as intervals of x appended to *iv.
-    void arc_pixels(int lo, int hi, int off, int a, int len,
-                    std::vector<std::pair<int, int>>* iv) const {
-        // x = a - off + t + k P, t in [0, len)
-        const int x0 = a - off;
-        for (int k = -3; k <= 3; ++k) {
-            const int b0 = std::max(lo, x0 + k * P), b1 = std::min(hi, x0 + k * P + len - 1);
-            if (b0 <= b1) iv->push_back({b0, b1});
-        }
-    }
+    int coff(int y, int c) const { return c == 0 ? soff(y) : fp.rl.skb + soff(y); }
     // How many pixels of [lo, hi] have a copy in the arc.
     int inside_count(int y, int lo, int hi, int a, int len) const {
         if (lo > hi) return 0;
         std::vector<std::pair<int, int>> iv[2];
-        for (int c = 0; c < ncopies(); ++c) arc_pixels(lo, hi, coff(y, c), a, len, &iv[c]);
+        for (int c = 0; c < ncopies(); ++c) arc_pixels(P, lo, hi, coff(y, c), a, len, &iv[c]);
         int n = 0;
         for (int c = 0; c < ncopies(); ++c)
             for (const auto& [b0, b1] : iv[c]) n += b1 - b0 + 1;
@@ -578,8 +617,17 @@ void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
         rl.ur = hr + 1;
         rl.ul = hl;
     }
+    const Relayout direct = rl;
     plan_skew(fp, span, mem, costs);
-    if (fp.nseg == 1) plan_out_windows(fp, span, mem, costs);
+    if (fp.nseg == 1) {
+        // the windowed rows (centred by skew_in, no wrapped rows to merge)
+        // where their estimate is below the skewed rows' or the direct
+        // routes'
+        FramePlan alt = fp;
+        alt.rl = direct;
+        if (plan_windows(alt, span, mem, costs, rl.skew ? rl.skew_estimate : -1) >= 0) rl = alt.rl;
+        plan_out_windows(fp, span, mem, costs);
+    }
 }
 
 void out_displacements(const FramePlan& fp, int g, int* smin, int* smax) {

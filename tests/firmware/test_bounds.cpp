@@ -4,12 +4,16 @@
 //  - the forward, video and spill bounds count the work of the frame
 //    (valid states counted here by brute force, pointer bytes, lines);
 //  - no phase of any run (fixed cases and random parameter sets, batches,
-//    segments, spills, census and window options) is faster than its bound.
+//    segments, spills, census and window options) is faster than its bound;
+//  - the re-layout's cut bound finds the pixels a video row already puts in
+//    an arc of the ring for any lane offset (arc_pixels, by brute force).
 #define BOOST_TEST_MODULE firmware_bounds
 #include <boost/test/unit_test.hpp>
+#include <random>
 
 #include "fw_test_util.hpp"
 #include "imap/firmware/bounds.hpp"
+#include "plan_internal.hpp"
 
 using namespace fwtest;
 
@@ -195,4 +199,35 @@ BOOST_AUTO_TEST_CASE(relayout_bound_counts_the_loads_and_stores) {
                 BOOST_TEST(plan.rl.hop_bound_in == (hops + 7) / 8 * hop);
             }
         }
+}
+
+BOOST_AUTO_TEST_CASE(arc_pixels_finds_every_pixel_in_the_arc) {
+    // Pixels x of [lo, hi] whose lane (x + off) mod P lies in the arc [a, a +
+    // len): against a count pixel by pixel, with lane offsets far beyond the
+    // ring (the windowed rows' copies start up to several rings away on few
+    // PEs), and the intervals disjoint.
+    std::mt19937 rng(30);
+    for (int it = 0; it < 4000; ++it) {
+        const int P = 1 << std::uniform_int_distribution<int>(1, 7)(rng);
+        const int lo = std::uniform_int_distribution<int>(-3 * P, 3 * P)(rng);
+        const int hi = lo + std::uniform_int_distribution<int>(-1, P - 1)(rng);
+        const int off = std::uniform_int_distribution<int>(-12 * P, 12 * P)(rng);
+        const int a = std::uniform_int_distribution<int>(0, P - 1)(rng);
+        const int len = std::uniform_int_distribution<int>(1, P)(rng);
+        std::vector<std::pair<int, int>> iv;
+        fw::detail::arc_pixels(P, lo, hi, off, a, len, &iv);
+        std::vector<int> seen(std::max(0, hi - lo + 1), 0);
+        for (const auto& [b0, b1] : iv)
+            for (int x = b0; x <= b1; ++x)
+                if (x >= lo && x <= hi) ++seen[x - lo];
+        int wrong = 0;
+        for (int x = lo; x <= hi; ++x) {
+            const bool in = (((x + off - a) % P) + P) % P < len;
+            wrong += seen[x - lo] != (in ? 1 : 0);
+        }
+        BOOST_TEST_CONTEXT("P " << P << " [" << lo << ", " << hi << "] off " << off << " arc " << a
+                                << "+" << len) {
+            BOOST_TEST(wrong == 0);
+        }
+    }
 }

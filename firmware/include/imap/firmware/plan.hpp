@@ -201,14 +201,18 @@ struct Relayout {
     int ybb = 0, ywb1 = 0, ywb2 = 0;
     int skew_in = 0, skew_out = 0;
     int dmin = 0, dmax = 0, smin = 0, smax = 0;
-    // Windowed rows (bidir, lines wider than the ring: several video
-    // segments; the input only, the output keeps the direct routes): copy k
-    // of line y comes in window by window, window t from column X0 + t P -
-    // (k ? skb : 0) - span*y, so pixel X of the copy sits on lane (X + (k ?
-    // skb : 0) + span*y) mod P and every line's items share one displacement
-    // mod P per pixel; window t of row q = span*y + k is stored at row index
-    // q - P t + wrc (wsize rows per image), so round d's sender reads row
-    // lane + d - base + wrc, whichever window its receiver's pixel lies in.
+    // The planner's estimate of the skewed rows' input (video rows and
+    // rounds, cycles as counted in relayout.inc), against which the
+    // windowed rows are weighed in one-segment frames.
+    int64_t skew_estimate = -1;
+    // Windowed rows (bidir; the input only, the output keeps the direct
+    // routes): copy k of line y comes in window by window, window t from
+    // column X0 + t P - (k ? skb : 0) - skew_in - span*y, so pixel X of the
+    // copy sits on lane (X + (k ? skb : 0) + skew_in + span*y) mod P and
+    // every line's items share one displacement mod P per pixel (rounds
+    // dmin .. dmax); window t of row q = span*y + k is stored at row index q
+    // - P t + wrc (wsize rows per image), so round d's sender reads row lane
+    // + d - base + wrc, whichever window its receiver's pixel lies in.
     bool windows = false;
     int wlo[2] = {0, 0}, whi[2] = {0, 0};  // the windows t of copy k
     int wrc = 0, wsize = 0;
