@@ -233,6 +233,18 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     rl.owrap = wrap;
 }
 
+// One-segment frames: the windowed rows (centred by skew_in, no wrapped
+// rows to merge) where their estimate is below the skewed rows' the plan
+// has, else the direct routes' (`direct`: the plan before plan_skew).
+void weigh_windows(FramePlan& fp, const Relayout& direct, int span, int mem,
+                   const isa::CostTable& costs) {
+    if (fp.rl.windows) return;
+    FramePlan alt = fp;
+    alt.rl = direct;
+    if (plan_windows(alt, span, mem, costs, fp.rl.skew ? fp.rl.skew_estimate : -1) >= 0)
+        fp.rl = alt.rl;
+}
+
 void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
                bool allow_copies = true) {
     Relayout& rl = fp.rl;
@@ -597,7 +609,9 @@ void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
         // output displacements sigma = sender - receiver, one per class mod P
         rl.our = P / 2;  // sigma = our_min .. our_min + step*(n-1): stored as min and count
         rl.oul = 0;
+        const Relayout direct = rl;
         plan_skew(fp, span, mem, costs);
+        weigh_windows(fp, direct, span, mem, costs);
         plan_out_windows(fp, span, mem, costs);
         return;
     }
@@ -620,12 +634,7 @@ void plan_relayout(FramePlan& fp, int mem, const isa::CostTable& costs) {
     const Relayout direct = rl;
     plan_skew(fp, span, mem, costs);
     if (fp.nseg == 1) {
-        // the windowed rows (centred by skew_in, no wrapped rows to merge)
-        // where their estimate is below the skewed rows' or the direct
-        // routes'
-        FramePlan alt = fp;
-        alt.rl = direct;
-        if (plan_windows(alt, span, mem, costs, rl.skew ? rl.skew_estimate : -1) >= 0) rl = alt.rl;
+        weigh_windows(fp, direct, span, mem, costs);
         plan_out_windows(fp, span, mem, costs);
     }
 }
