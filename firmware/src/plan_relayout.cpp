@@ -298,8 +298,11 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // skewed round sends (about 14 cycles, 21 around the ring, 22 with kind
     // copies), shifts 2 |d| hops and stores (15); a video row costs its two
     // vin and its CP cycles (line_cp), a row past the ring's end two vin,
-    // 10 cycles of merging and its CP cycles more. The direct routes' rounds: 2u and 2u + 1 hops
-    // with two stores (44 cycles; bidir) or u hops with one (27; single).
+    // 10 cycles of merging and its CP cycles more. The direct routes'
+    // rounds: 2u and 2u + 1 hops with two stores (44 cycles; bidir) or u
+    // hops with one (27; single). (The rounds' figures are older hand
+    // counts, kept for these choices; the windowed rows are weighed against
+    // skew_estimate below, counted from the rounds as they run today.)
     const int vl = costs.video_line, rh = costs.ring_hop;
     auto wraps = [&](int off) {  // lines whose row from lane off + span y passes P - 1
         int c = 0;
