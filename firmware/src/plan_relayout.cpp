@@ -60,6 +60,20 @@ int line_cp(int lines) {
     return lines >= 8 ? 3 : 5;
 }
 
+// The planner's estimate of the direct routes' input rounds (one segment):
+// 2u and 2u + 1 hops with two stores (44 and 49 cycles; bidir) or u + 1
+// hops with one (27; single).
+int64_t direct_rounds(const Relayout& rl, bool bidir, int rh) {
+    int64_t c = 0;
+    if (bidir) {
+        for (int u = 0; u < rl.ur; ++u) c += 44 + 2 * (2 * u + 2) * rh;
+        for (int u = 0; u < rl.ul; ++u) c += 49 + 2 * (2 * u + 3) * rh;
+    } else {
+        for (int u = 0; u < rl.ur + rl.ul; ++u) c += 27 + 2 * (u + 1) * rh;
+    }
+    return c;
+}
+
 // Windowed rows (docs/firmware.md, section 5; bidir): the kind copies'
 // skewed rows of the whole line, window by window, pixel x of copy k of line
 // y at unrolled lane x + (k ? skb : 0) + wi + span y. Round d (over the
@@ -91,9 +105,7 @@ int64_t plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& cos
     // segment as plan_skew counts them
     const int vl = costs.video_line, rh = costs.ring_hop;
     if (limit < 0) {
-        limit = int64_t(fp.nseg) * H * (2 * vl + line_cp(H));
-        for (int u = 0; u < rl.ur; ++u) limit += fp.nseg * (44 + 2 * (2 * u + 2) * rh);
-        for (int u = 0; u < rl.ul; ++u) limit += fp.nseg * (49 + 2 * (2 * u + 3) * rh);
+        limit = fp.nseg * (int64_t(H) * (2 * vl + line_cp(H)) + direct_rounds(rl, true, rh));
     }
     struct Pick {
         int wi, wlo[2], whi[2], rc, wsize;
@@ -298,9 +310,8 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // skewed round sends (about 14 cycles, 21 around the ring, 22 with kind
     // copies), shifts 2 |d| hops and stores (15); a video row costs its two
     // vin and its CP cycles (line_cp), a row past the ring's end two vin,
-    // 10 cycles of merging and its CP cycles more. The direct routes'
-    // rounds: 2u and 2u + 1 hops with two stores (44 cycles; bidir) or u
-    // hops with one (27; single). (The rounds' figures are older hand
+    // 10 cycles of merging and its CP cycles more; the direct routes'
+    // rounds as direct_rounds counts them. (The rounds' figures are older hand
     // counts, kept for these choices; the windowed rows are weighed against
     // skew_estimate below, counted from the rounds as they run today.)
     const int vl = costs.video_line, rh = costs.ring_hop;
@@ -313,6 +324,10 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         return int64_t(copies_n) * H * (2 * vl + line_cp(H)) +
                int64_t(wrapped) * (2 * vl + 10 + line_cp(wrapped));
     };
+    // both kinds' copies: kind 1's rows start skb lanes on
+    auto copies_rows_cost = [&] {
+        return rows_cost(2, wraps(0)) + int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)));
+    };
     auto skew_cost = [&](int d0, int d1, int send) {
         int64_t c = 0;
         for (int d = d0; d <= d1; ++d) c += send + 15 + 2 * std::abs(d) * rh;
@@ -320,16 +335,9 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     };
     const int64_t one =
         skew_cost(base + lo, base + hi, wrap ? 21 : 14) + rows_cost(1, wrap ? wraps(0) : 0);
-    int64_t direct = rows_cost(1, 0);
-    if (fp.f.bidir) {
-        for (int u = 0; u < rl.ur; ++u) direct += 44 + 2 * (2 * u + 2) * rh;
-        for (int u = 0; u < rl.ul; ++u) direct += 49 + 2 * (2 * u + 3) * rh;
-    } else {
-        for (int u = 0; u < rl.ur + rl.ul; ++u) direct += 27 + 2 * (u + 1) * rh;
-    }
+    const int64_t direct = rows_cost(1, 0) + direct_rounds(rl, fp.f.bidir, rh);
     if (copies) {
-        const int64_t two_rows = skew_cost(base + lo2, base + hi2, 22) + rows_cost(2, wraps(0)) +
-                                 int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)));
+        const int64_t two_rows = skew_cost(base + lo2, base + hi2, 22) + copies_rows_cost();
         // the base above was centred for the copies; without them the
         // single copy's rounds are centred on their own range
         const int b1 = std::max(0, -((lo + hi) / 2));
@@ -373,9 +381,7 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // copy's 8 (12 around the ring), the stores 7, and the shifts
     {
         const int send = copies ? (P % 256 == 0 ? 5 : 10) : (wrap ? 12 : 8);
-        int64_t e = copies ? rows_cost(2, wraps(0)) +
-                                 int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)))
-                           : rows_cost(1, wrap ? wraps(0) : 0);
+        int64_t e = copies ? copies_rows_cost() : rows_cost(1, wrap ? wraps(0) : 0);
         for (int d = rl.dmin; d <= rl.dmax; ++d) e += send + 7 + 2 * std::abs(d) * rh;
         rl.skew_estimate = e;
     }
