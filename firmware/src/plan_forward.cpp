@@ -66,39 +66,104 @@ void column_ranges(const golden::Params& p, int N, ForwardPlan& f) {
     f.kmax = std::max(f.K[0], f.K[1]);
 }
 
-// The passes of every column: one shared pass where the kinds agree on the
-// first slot, else one masked pass per kind.
-void column_passes(ForwardPlan& f) {
+// Estimated cycles of the forward pass's parts (dp_forward.inc): a slot (the
+// node and its share of the group loop), a pass's header and call, a mask
+// switch between passes of different kinds, a split pass's late first slot.
+constexpr int kSlotCycles = 30, kPassCycles = 14, kMaskCycles = 3, kSplitCycles = 12;
+
+// The passes of every column with the kinds' slot shifts f.lsh: one shared
+// pass where the kinds start at the same slot (and agree on D only); where
+// they start apart and `split` allows, one split pass over both kinds'
+// slots when the estimate favours it over a masked pass per kind; else one
+// masked pass per kind. Returns the estimated cycles.
+int64_t column_passes(ForwardPlan& f, bool split) {
     f.passes.clear();
     f.slots = 0;
-    // A pass of column k over levels jlo .. hi of `kind` (-1: every kind).
-    auto add_pass = [&](int k, int kind, int jlo, int hi, bool donly) {
+    int64_t est = 0;
+    auto pad_bit = [&](int p, int k) { return f.hi[p][k] == f.D - 1 ? 1 << p : 0; };
+    // A pass of column k over slots lo .. hi of `kind` (-1: every kind).
+    auto add_pass = [&](int k, int kind, int lo, int hi, bool donly, int pad) {
         ForwardPass ps;
         ps.k = k;
         ps.kind = kind;
-        ps.jlo = jlo;
-        ps.n = hi - jlo + 1;
+        ps.jlo = lo;
+        ps.n = hi - lo + 1;
         ps.donly = donly;
-        ps.pad = hi == f.D - 1;
+        ps.pad = pad;
         ps.bytes = ceil_div(ps.n, 4);
         f.passes.push_back(ps);
         f.slots += ps.n;
+        est += kPassCycles + int64_t{kSlotCycles} * ps.n;
+        return &f.passes.back();
     };
     for (int k = 1; k <= f.kmax; ++k) {
         int act[2], na = 0;
         for (int p = 0; p < f.kinds; ++p)
             if (k <= f.K[p]) act[na++] = p;
         auto donly = [&](int p) { return f.lo[p][k] < f.lo[p][k - 1]; };
-        const bool shared = na == 2 && f.lo[0][k] == f.lo[1][k] && donly(0) == donly(1);
-        if (f.kinds == 1 || shared) {
-            int hi = f.hi[act[0]][k];
-            if (na == 2) hi = std::max(hi, f.hi[act[1]][k]);
-            add_pass(k, -1, f.lo[act[0]][k], hi, donly(act[0]));
+        auto first = [&](int p) { return f.lo[p][k] + f.lsh[p]; };
+        auto last = [&](int p) { return f.hi[p][k] + f.lsh[p]; };
+        if (na == 1) {
+            const int p = act[0];
+            add_pass(k, f.kinds == 1 ? -1 : p, first(p), last(p), donly(p), pad_bit(p, k));
             continue;
         }
-        for (int i = 0; i < na; ++i)
-            add_pass(k, act[i], f.lo[act[i]][k], f.hi[act[i]][k], donly(act[i]));
+        const int pads = pad_bit(0, k) | pad_bit(1, k);
+        const int top = std::max(last(0), last(1));
+        if (first(0) == first(1) && donly(0) == donly(1)) {
+            add_pass(k, -1, first(0), top, donly(0), pads);
+            continue;
+        }
+        const int e = first(0) <= first(1) ? 0 : 1, l = 1 - e;
+        const int64_t separate =
+            2 * (kPassCycles + kMaskCycles) +
+            int64_t{kSlotCycles} * (last(0) - first(0) + last(1) - first(1) + 2);
+        const int64_t merged =
+            kPassCycles + kSplitCycles + int64_t{kSlotCycles} * (top - first(e) + 1);
+        if (split && first(e) < first(l) && merged < separate) {
+            ForwardPass* ps = add_pass(k, -1, first(e), top, donly(e), pads);
+            ps->split = first(l) - first(e);
+            ps->late = l;
+            ps->ldonly = donly(l);
+            est += kSplitCycles;
+            continue;
+        }
+        for (int i = 0; i < 2; ++i) {
+            add_pass(k, i, first(i), last(i), donly(i), pad_bit(i, k));
+            est += kMaskCycles;
+        }
     }
+    return est;
+}
+
+// The kinds' slot shift (f.lsh) for the least estimated forward cycles, in
+// bidir frames whose node reads nothing beside the line buffers (the census
+// codes, the bt bounds and the window's copies are laid out for equal
+// slots): shifting kind 1 by t > 0 (or kind 0 by -t) lines its first slots
+// up against the other kind's, so the split passes cover both ranges at
+// once where the kinds' level ranges are complementary (D near the width).
+// The shift costs cost-plane and L' bytes; the 8-bit backtrack keeps slots
+// below 256.
+void choose_shift(ForwardPlan& f, bool eligible) {
+    f.lsh[0] = f.lsh[1] = 0;
+    int64_t best = column_passes(f, false);
+    if (!eligible) return;
+    int best_t = 0;
+    bool best_split = false;
+    for (int t = -(f.D - 1); t <= f.D - 1; ++t) {
+        if (f.D + 1 + std::abs(t) > 255) continue;
+        f.lsh[0] = std::max(0, -t);
+        f.lsh[1] = std::max(0, t);
+        const int64_t est = column_passes(f, true);
+        if (est < best) {
+            best = est;
+            best_t = t;
+            best_split = true;
+        }
+    }
+    f.lsh[0] = std::max(0, -best_t);
+    f.lsh[1] = std::max(0, best_t);
+    column_passes(f, best_split);
 }
 
 // The window's sums (AGG_BODY): a pass updates the previous column's sum at
@@ -156,7 +221,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
     }
     column_ranges(p, N, f);
-    column_passes(f);
+    choose_shift(f, f.bidir && !f.joint && !tiny && p.kc == 0 && p.dissim != golden::Dissim::Bt &&
+                        p.agg_rx == 0 && p.agg_ry == 0);
     for (int i = 0; i < N; ++i) f.valid_states += golden::levels_at(i, N, p.D);
 
     const int64_t w = wm_max(p);

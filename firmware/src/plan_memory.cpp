@@ -28,19 +28,25 @@ void line_buffers(ForwardPlan& f, const golden::Params& p) {
     f.kblk = 0;
     f.kbs = kKBlockSize + (p.kc > 0 ? kPopTableBytes : 0) + (p.agg_ry > 0 ? kAggFlagBytes : 0);
     f.kr = f.kmax;
+    // L' offsets the node reads (k + slot, whichever kind) and the ones the
+    // re-layout fills (each kind's data, at its lsh)
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
     if (f.joint)
         kl = std::max({kl, f.s + p.D, N + p.D - 2 - f.s});
     else if (f.bidir)
-        kl = std::max({kl, f.s + p.D - 1, N - 1 - f.s});
+        kl = std::max({kl, f.s + p.D - 1 + f.lsh[0], N - 1 - f.s + f.lsh[1]});
     else
         kl = std::max(kl, N);
     f.kl = kl;
     f.rb = f.kblk + f.kbs + f.kr;
+    // cost planes: every slot a pass computes and the one above it (the
+    // top slot's D source; the pad where a kind reaches level D-1)
+    int planes = p.D + 1;
+    for (const ForwardPass& ps : f.passes) planes = std::max(planes, ps.jlo + ps.n + 1);
     f.costl = f.rb + 2 + f.kl;
-    f.costh = f.costl + p.D + 1;
-    f.preg = f.costh + p.D + 1;
+    f.costh = f.costl + planes;
+    f.preg = f.costh + planes;
 }
 
 // The census codes and the bt bounds: regions the size of the line buffers,

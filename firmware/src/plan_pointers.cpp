@@ -19,7 +19,7 @@ namespace {
 int kind_bytes(const ForwardPlan& f, const ForwardPass& ps, int p) {
     if (ps.kind >= 0) return ps.kind == p ? ps.bytes : 0;
     if (ps.k > f.K[p]) return 0;
-    return ceil_div(f.hi[p][ps.k] - ps.jlo + 1, 4);
+    return ceil_div(f.hi[p][ps.k] + f.lsh[p] - ps.jlo + 1, 4);
 }
 
 struct FreeMap {
@@ -68,15 +68,18 @@ FreeMap forward_free_map(const ForwardPlan& f, int mem) {
         }
         for (int i = 0; i <= f.kr; ++i)
             fm.avail[p][f.rp_addr(i)] = i + 1;  // R'[i] dies after column i
-        for (int i = 0; i <= f.kl; ++i)
-            fm.avail[p][f.lp_addr(i)] = i + 1;  // L'[i] dies after column i
+        for (int i = 0; i < f.lsh[p]; ++i) fm.avail[p][f.rb + 1 + i] = 1;  // below its L'
+        for (int i = 0; i <= f.kl - f.lsh[p]; ++i)
+            fm.avail[p][f.lp_addr(i, p)] = i + 1;  // L'[i] dies after column i
     }
     return fm;
 }
 
 // Passes [i, j) of one column write their pointer bytes at local address
 // `addr`; each kind's column is then at local address `local` or external
-// address `ext` (-1: neither). `take(p, b)` sees the b bytes of kind p.
+// address `ext` (-1: neither). `take(p, a, b)` sees kind p's pointers in
+// bytes a .. b - 1 of the column (a split pass's late kind starts a > 0:
+// the bytes below hold values nothing reads).
 template <class Take>
 void assign_column(ForwardPlan& f, size_t i, size_t j, int addr, int local, int ext, Take&& take) {
     const int k = f.passes[i].k;
@@ -85,8 +88,9 @@ void assign_column(ForwardPlan& f, size_t i, size_t j, int addr, int local, int 
         for (int p = 0; p < f.kinds; ++p) {
             const int b = kind_bytes(f, f.passes[q], p);
             if (b == 0) continue;
-            take(p, b);
-            f.ptr[p][k] = {local, f.passes[q].jlo, b, ext};
+            const ForwardPass& ps = f.passes[q];
+            take(p, ps.split > 0 && ps.late == p ? ps.split / 4 : 0, b);
+            f.ptr[p][k] = {local, f.passes[q].jlo - f.lsh[p], b, ext};
         }
     }
 }
@@ -119,15 +123,15 @@ bool place_forward(ForwardPlan& f, FreeMap& fm, int mem, int spill) {
         if (k <= spill) {
             if (size > stage_cap) return false;
             if (stage_off + size > stage_cap) spill_block(static_cast<int>(i) - 1);
-            assign_column(f, i, j, f.preg + stage_off, -1, ext, [](int, int) {});
+            assign_column(f, i, j, f.preg + stage_off, -1, ext, [](int, int, int) {});
             stage_off += size;
             ext += size;
             if (k == spill) spill_block(static_cast<int>(j) - 1);
         } else {
             const int a = fm.find(size, kinds, k);
             if (a < 0) return false;
-            assign_column(f, i, j, a, a, -1, [&](int p, int b) {
-                for (int x = a; x < a + b; ++x) fm.used[p][x] = 1;
+            assign_column(f, i, j, a, a, -1, [&](int p, int from, int b) {
+                for (int x = a + from; x < a + b; ++x) fm.used[p][x] = 1;
             });
             // A pass writes `size` bytes for every kind it runs on; bytes
             // beyond a kind's own pointers are free for that kind afterwards.

@@ -44,7 +44,7 @@ int buffer_addr_r(const ForwardPlan& f, int h, int X) {
 int buffer_addr_l(const ForwardPlan& f, int h, int X) {
     if (!f.bidir) return f.rb + 2 + X;
     if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
-    return h == 0 ? f.rb + f.s + f.D - X : f.rb + 1 - f.s + X;
+    return h == 0 ? f.rb + f.s + f.D - X + f.lsh[0] : f.rb + 1 - f.s + X + f.lsh[1];
 }
 
 // The output frame: 0 cyclopean, 1 left, 2 right.
@@ -110,6 +110,12 @@ void dp_constants(std::ostringstream& os, const golden::Params& p, const Forward
              {"AGG", f.agg},
              {"RBR", f.rbr},
              {"RBL", f.rbl},
+             {"LSH0", f.lsh[0]},
+             {"LSH1", f.lsh[1]},
+             {"FSPLIT", std::any_of(f.passes.begin(), f.passes.end(),
+                                    [](const ForwardPass& ps) { return ps.split > 0; })
+                            ? 1
+                            : 0},
              {"CNO", f.agg > 0 ? f.cxo : f.co},
              {"BT", f.bt ? 1 : 0},
              {"BLO", f.blo},
@@ -152,57 +158,58 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
         sknc = fp.rl.copies && P % 256 == 0 ? 3 : 2;
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
-    equs(os, {
-                 {"P", fp.P},
-                 {"HROI", fp.roi.h},
-                 {"X0", fp.roi.x0},
-                 {"Y0", fp.roi.y0},
-                 {"NSEG", fp.nseg},
-                 {"LPB", fp.lpb},
-                 {"BSTRIDE", multi ? fp.batches[0].out_count : fp.roi.h},
-                 {"BOVERLAP", multi ? fp.halo : 0},
-                 {"HBMAX", fp.hbmax},
-                 {"INL", fp.inl},
-                 {"INR", fp.inr},
-                 {"OUT", fp.out},
-                 {"SPLIT_IN", fp.split_in ? 1 : 0},
-                 {"CINL", fp.cinl},
-                 {"CINR", fp.cinr},
-                 {"CSCR", fp.cscr},
-                 {"RMOD", fp.rl.modular ? 1 : 0},
-                 {"BP", fp.rl.base},
-                 {"UR", fp.rl.ur},
-                 {"UL", fp.rl.ul},
-                 {"SKEW", fp.rl.skew ? 1 : 0},
-                 {"SKW", fp.rl.wrap ? 1 : 0},
-                 {"YWI", fp.rl.ywi},
-                 {"YWO", fp.rl.ywo},
-                 {"SKC", fp.rl.copies ? 1 : 0},
-                 {"SKB", fp.rl.skb},
-                 {"SKNC", sknc},
-                 {"YBB", fp.rl.ybb},
-                 {"YWB1", fp.rl.ywb1},
-                 {"YWB2", fp.rl.ywb2},
-                 {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : 0) - fp.rl.skew_in - fp.rl.dmin + 1},
-                 {"SKI", fp.rl.skew_in},
-                 {"SKO", fp.rl.skew_out},
-                 {"SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin},
-                 {"DMIN", fp.rl.dmin},
-                 {"DMAX", fp.rl.dmax},
-                 {"SPARE", fp.spare ? 1 : 0},
-                 {"SKWIN", fp.rl.windows ? 1 : 0},
-                 {"SKWL0", fp.rl.wlo[0]},
-                 {"SKWH0", fp.rl.whi[0]},
-                 {"SKWL1", fp.rl.wlo[1]},
-                 {"SKWH1", fp.rl.whi[1]},
-                 {"SKRC", fp.rl.wrc},
-                 {"SKWB", fp.rl.wsize <= 256 ? 1 : 0},
-                 {"SKWO", fp.rl.owindows ? 1 : 0},
-                 {"SKOWL", fp.rl.owlo},
-                 {"SKOWH", fp.rl.owhi},
-                 {"SKORC", fp.rl.orc},
-                 {"SKOWB", fp.rl.osize <= 256 || fp.rl.owrap ? 1 : 0},
-             });
+    equs(os,
+         {
+             {"P", fp.P},
+             {"HROI", fp.roi.h},
+             {"X0", fp.roi.x0},
+             {"Y0", fp.roi.y0},
+             {"NSEG", fp.nseg},
+             {"LPB", fp.lpb},
+             {"BSTRIDE", multi ? fp.batches[0].out_count : fp.roi.h},
+             {"BOVERLAP", multi ? fp.halo : 0},
+             {"HBMAX", fp.hbmax},
+             {"INL", fp.inl},
+             {"INR", fp.inr},
+             {"OUT", fp.out},
+             {"SPLIT_IN", fp.split_in ? 1 : 0},
+             {"CINL", fp.cinl},
+             {"CINR", fp.cinr},
+             {"CSCR", fp.cscr},
+             {"RMOD", fp.rl.modular ? 1 : 0},
+             {"BP", fp.rl.base},
+             {"UR", fp.rl.ur},
+             {"UL", fp.rl.ul},
+             {"SKEW", fp.rl.skew ? 1 : 0},
+             {"SKW", fp.rl.wrap ? 1 : 0},
+             {"YWI", fp.rl.ywi},
+             {"YWO", fp.rl.ywo},
+             {"SKC", fp.rl.copies ? 1 : 0},
+             {"SKB", fp.rl.skb},
+             {"SKNC", sknc},
+             {"YBB", fp.rl.ybb},
+             {"YWB1", fp.rl.ywb1},
+             {"YWB2", fp.rl.ywb2},
+             {"SKX1", fp.rl.base - (fp.rl.copies ? fp.rl.skb : 0) - fp.rl.skew_in - fp.rl.dmin + 1},
+             {"SKI", fp.rl.skew_in},
+             {"SKO", fp.rl.skew_out},
+             {"SKX", fp.rl.base - fp.rl.skew_in - fp.rl.dmin},
+             {"DMIN", fp.rl.dmin},
+             {"DMAX", fp.rl.dmax},
+             {"SPARE", fp.spare ? 1 : 0},
+             {"SKWIN", fp.rl.windows ? 1 : 0},
+             {"SKWL0", fp.rl.wlo[0]},
+             {"SKWH0", fp.rl.whi[0]},
+             {"SKWL1", fp.rl.wlo[1]},
+             {"SKWH1", fp.rl.whi[1]},
+             {"SKRC", fp.rl.wrc},
+             {"SKWB", fp.rl.wsize <= 256 ? 1 : 0},
+             {"SKWO", fp.rl.owindows ? 1 : 0},
+             {"SKOWL", fp.rl.owlo},
+             {"SKOWH", fp.rl.owhi},
+             {"SKORC", fp.rl.orc},
+             {"SKOWB", fp.rl.osize <= 256 || fp.rl.owrap ? 1 : 0},
+         });
 }
 
 // Site of R'[m] / L'[m] of a kind (docs/firmware.md, sections 1 and 10).
@@ -319,8 +326,8 @@ void forward_macro(std::ostringstream& os, const ForwardPlan& f, int spare_base)
     for (size_t i = 0; i < f.passes.size(); ++i) {
         const ForwardPass& ps = f.passes[i];
         os << "        FCOL " << ps.k << ", " << ps.kind << ", " << ps.jlo << ", " << ps.n << ", "
-           << (ps.donly ? 1 : 0) << ", " << (ps.pad ? 1 : 0) << ", " << ps.addr << ", " << ps.rfull
-           << ", " << ps.rinc << "\n";
+           << (ps.donly ? 1 : 0) << ", " << ps.pad << ", " << ps.addr << ", " << ps.rfull << ", "
+           << ps.rinc << ", " << ps.split << ", " << ps.late << ", " << (ps.ldonly ? 1 : 0) << "\n";
         while (si < f.spills.size() && f.spills[si].after == static_cast<int>(i))
             transfer(os, f, spare_base, true, f.spills[si++]);
     }
@@ -348,8 +355,10 @@ void back_macro(std::ostringstream& os, const ForwardPlan& f, int spare_base) {
             act[p] = 1;
             maxb = std::max(maxb, c.bytes);
         }
-        os << "        BCOL " << k << ", " << addr << ", " << base[0] << ", " << base[1] << ", "
-           << maxb - 1 << ", " << act[0] << ", " << act[1] << "\n";
+        // a kind's base may lie below slot 0 (a split pass's late kind): the
+        // walk's slot j - base is 8-bit arithmetic
+        os << "        BCOL " << k << ", " << addr << ", " << (base[0] & 255) << ", "
+           << (base[1] & 255) << ", " << maxb - 1 << ", " << act[0] << ", " << act[1] << "\n";
     }
     os << ".endm\n";
     // PLAN_BTAB: the step-synchronous backtrack's table, one BTE per column

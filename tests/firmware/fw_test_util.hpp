@@ -39,9 +39,10 @@ inline void fill_buffers(isa::Machine& m, int pe, const fw::ForwardPlan& f, cons
         const int x = !f.bidir ? k - 1 : left ? f.s - k : f.s + k;
         m.mem_write(pe, uint32_t(f.rp_addr(k)), uint8_t(px(ln.R, x)));
     }
-    for (int mi = 0; mi <= f.kl; ++mi) {
+    const int kind = f.bidir && !left ? 1 : 0;
+    for (int mi = 0; mi <= f.kl - f.lsh[kind]; ++mi) {
         const int x = !f.bidir ? mi - 1 : left ? f.s + f.D - 1 - mi : f.s + mi;
-        m.mem_write(pe, uint32_t(f.lp_addr(mi)), uint8_t(px(ln.L, x)));
+        m.mem_write(pe, uint32_t(f.lp_addr(mi, kind)), uint8_t(px(ln.L, x)));
     }
 }
 

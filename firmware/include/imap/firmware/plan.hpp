@@ -35,15 +35,21 @@ class FirmwareError : public std::runtime_error {
 inline constexpr int64_t kMaxSpread = 32766;
 
 // One pass of the forward pass over column k: slots jlo .. jlo + n - 1 of
-// every PE of `kind` (-1: all kinds at once).
+// every PE of `kind` (-1: all kinds at once); kind p's level j is slot
+// j + ForwardPlan::lsh[p].
 struct ForwardPass {
     int k = 0;
     int kind = -1;
     int jlo = 0, n = 0;
     bool donly = false;  // the first slot has only its D source
-    bool pad = false;    // the last slot is level D-1: write the pad after the pass
-    int addr = 0;        // local address of the pass's pointer bytes (or of the staging area)
-    int bytes = 0;       // ceil(n / 4)
+    int pad = 0;         // bit p: kind p reaches level D-1 here (its pad after the pass)
+    // A split pass (kind -1): kind `late` starts `split` slots after jlo
+    // (its first slot set up there, D only if ldonly); the other kind starts
+    // at jlo. split 0: both start at jlo.
+    int split = 0, late = -1;
+    bool ldonly = false;
+    int addr = 0;   // local address of the pass's pointer bytes (or of the staging area)
+    int bytes = 0;  // ceil(n / 4)
     // The window's match costs (AGG_BODY, dp_forward.inc): the first `rfull`
     // slots and those after rfull + rinc are summed whole; the `rinc` slots
     // between them, which every kind of the pass computed in the previous
@@ -88,9 +94,13 @@ struct ForwardPlan {
     // Memory (local addresses per PE).
     int kblk = 0;                // per-PE constant block
     int kbs = 10;                // its size (the census adds its popcount table)
-    int rb = 0, kr = 0, kl = 0;  // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i (i <= kl)
-    int costl = 0, costh = 0;    // cost planes (levels 0..D, D = pad)
-    int preg = 0;                // start of the pointer region
+    int rb = 0, kr = 0, kl = 0;  // R'[i] at rb - i (i <= kr), L'[i] at rb + 1 + i + lsh (<= kl)
+    int costl = 0, costh = 0;    // cost planes (slots 0..D + the larger lsh, pad included)
+    // Kind p's level j at slot j + lsh[p] of the cost planes, its L'[i] at
+    // rb + 1 + i + lsh[p]: slots apart let the kinds' passes share columns
+    // whose first levels differ (split passes; docs/firmware.md, section 2).
+    int lsh[2] = {0, 0};
+    int preg = 0;  // start of the pointer region
     // SPEC A.9 census (docs/firmware.md, section 10): radius (0 = off), and
     // the census codes of R' and L' at the line buffers' addresses + co.
     int census = 0, kc = 0, co = 0;
@@ -131,7 +141,7 @@ struct ForwardPlan {
     int tiny_buf[3] = {0, 0, 0};
 
     int rp_addr(int i) const { return rb - i; }
-    int lp_addr(int i) const { return rb + 1 + i; }
+    int lp_addr(int i, int kind) const { return rb + 1 + i + lsh[kind]; }
     // Level range of line buffer L' used by kind `kind` of the DP (for tests).
     // Pointer of state (k, j) of a kind as the golden encodes it (M 0, D 1,
     // O 2), read through `mem` (local memory) or `ext` (external memory) of
