@@ -223,7 +223,8 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
 
 FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
                           const isa::MachineConfig& cfg, bool spare,
-                          RowLayout rows = RowLayout::Fastest) {
+                          RowLayout rows = RowLayout::Fastest,
+                          PassLayout passes = PassLayout::Fastest) {
     detail::check_options(p, true);
     if (!cfg.indirect)
         throw FirmwareError(
@@ -243,7 +244,8 @@ FramePlan plan_frame_impl(const golden::Params& p, const golden::Roi& roi,
     const bool tiny = p.vote && roi.h > fp.lpb && fp.lpb < 3 && fp.lpb >= 1;
     // the census and the vertical window need batches of their halo (3 lines at least)
     if ((p.kc > 0 || p.agg_ry > 0) && tiny) throw too_few_for_the_halo(fp, p, span);
-    fp.f = detail::plan_forward_impl(p, roi.w, cfg, tiny, true);  // range and DP memory checks
+    fp.f = detail::plan_forward_impl(p, roi.w, cfg, tiny, true,
+                                     passes == PassLayout::Fastest);  // range and DP memory checks
     if (tiny) fp.lpb = 1;
     if (fp.lpb < 1) {
         std::ostringstream os;
@@ -318,8 +320,8 @@ bool spare_cheaper(const golden::Params& p, const isa::MachineConfig& cfg, const
 }  // namespace
 
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
-                     SpillLayout layout, RowLayout rows) {
-    FramePlan fp = plan_frame_impl(p, roi, cfg, false, rows);
+                     SpillLayout layout, RowLayout rows, PassLayout passes) {
+    FramePlan fp = plan_frame_impl(p, roi, cfg, false, rows, passes);
     if (layout == SpillLayout::External) return fp;
     FramePlan sp;
     if (const char* why = plan_spare(p, roi, cfg, fp, &sp)) {

@@ -202,7 +202,7 @@ void window_segments(ForwardPlan& f) {
 }  // namespace
 
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny, bool census_ok) {
+                              bool tiny, bool census_ok, bool split) {
     golden::validate_for_width(p, N);
     check_options(p, census_ok);
     check_range(p);
@@ -221,8 +221,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
     }
     column_ranges(p, N, f);
-    choose_shift(f, f.bidir && !f.joint && !tiny && p.kc == 0 && p.dissim != golden::Dissim::Bt &&
-                        p.agg_rx == 0 && p.agg_ry == 0);
+    choose_shift(f, split && f.bidir && !f.joint && !tiny && p.kc == 0 &&
+                        p.dissim != golden::Dissim::Bt && p.agg_rx == 0 && p.agg_ry == 0);
     for (int i = 0; i < N; ++i) f.valid_states += golden::levels_at(i, N, p.D);
 
     const int64_t w = wm_max(p);

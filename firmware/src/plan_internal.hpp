@@ -52,9 +52,10 @@ void arc_pixels(int P, int lo, int hi, int off, int a, int len,
 
 // ---- plan_forward.cpp ----
 // The forward plan of scanlines of length N; `tiny`: every pointer table in
-// the external memory (arrays of 2 to 5 PEs with the vote).
+// the external memory (arrays of 2 to 5 PEs with the vote); `split`: the
+// kinds' slots may shift apart for split passes (PassLayout::Fastest).
 ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::MachineConfig& cfg,
-                              bool tiny, bool census_ok);
+                              bool tiny, bool census_ok, bool split = true);
 // Whether pass `ps` computes slots of kind p.
 inline bool runs_on(const ForwardPlan& f, const ForwardPass& ps, int p) {
     return (ps.kind == p || ps.kind == -1) && ps.k <= f.K[p];

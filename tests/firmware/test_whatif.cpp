@@ -472,6 +472,72 @@ BOOST_AUTO_TEST_CASE(dp_phases_scale_with_the_work) {
     BOOST_TEST(within(per_valid_matched, 0.10));
 }
 
+BOOST_AUTO_TEST_CASE(split_passes_run_both_kinds_where_their_levels_differ) {
+    // Bidir frames whose kinds start their columns at different levels (D
+    // from half the width to the width, free and fixed seed disparities):
+    // the planner's passes (Fastest: the kinds' slots shifted apart, split
+    // passes) and the masked passes per kind (Masked) both run bit-exact,
+    // the pick is never slower, and at D = width the split passes take at
+    // most 80% of the masked passes' DP cycles (the kinds' level ranges are
+    // complementary there: masked, each PE idles half the time).
+    struct R {
+        uint64_t cycles, dp;
+        bool split;
+    };
+    auto run = [](const g::Params& p, int W, int H, int P, fw::PassLayout passes, uint32_t seed) {
+        std::mt19937 rng(seed);
+        const Frame fr = random_frame(rng, W, H, p.D);
+        const g::Roi roi{0, 0, W, H};
+        isa::MachineConfig cfg;
+        cfg.pes = uint32_t(P);
+        const fw::FramePlan plan =
+            fw::plan_frame(p, roi, cfg, fw::SpillLayout::Cheaper, fw::RowLayout::Fastest, passes);
+        const fw::FrameResult r = fw::run_frame_core(plan, fw::assemble_frame(p, plan),
+                                                     g::ImageView{fr.L.data(), W, H, W},
+                                                     g::ImageView{fr.R.data(), W, H, W}, cfg);
+        const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), W, H, W},
+                                                g::ImageView{fr.R.data(), W, H, W}, roi);
+        BOOST_REQUIRE(r.map.data == want.data);
+        bool split = false;
+        for (const fw::ForwardPass& ps : plan.f.passes) split = split || ps.split > 0;
+        return R{r.cycles,
+                 phase(r, "init") + phase(r, "forward") + phase(r, "spill") +
+                     phase(r, "backtrack") + phase(r, "merge"),
+                 split};
+    };
+    std::mt19937 rng(2026);
+    int splits = 0;
+    for (int i = 0; i < 24; ++i) {
+        const int W = 8 + int(rng() % 65), H = 2 + int(rng() % 11);
+        const int P = H <= 8 ? 16 : 32;
+        g::Params p;
+        p.D = std::max(2, W / 2 + int(rng() % uint32_t(W - W / 2 + 1)));
+        p.vote = rng() % 2 == 0;
+        if (rng() % 2) {
+            const int s = g::resolve_seed_col(p, W);
+            p.seed_disp = g::SeedDisp{false, int(rng() % uint32_t(std::min(p.D, W - s)))};
+        }
+        BOOST_TEST_CONTEXT(describe(p, W, H) << " P=" << P) {
+            const uint32_t seed = uint32_t(i * 17 + 5);
+            const R a = run(p, W, H, P, fw::PassLayout::Fastest, seed);
+            const R b = run(p, W, H, P, fw::PassLayout::Masked, seed);
+            BOOST_TEST(!b.split);
+            BOOST_TEST(a.cycles <= b.cycles);
+            splits += a.split ? 1 : 0;
+        }
+    }
+    BOOST_TEST(splits >= 12);
+    for (int W : {32, 64}) BOOST_TEST_CONTEXT("W=" << W << " D=" << W) {
+            g::Params p;
+            p.D = W;
+            const R a = run(p, W, 16, 32, fw::PassLayout::Fastest, 9);
+            const R b = run(p, W, 16, 32, fw::PassLayout::Masked, 9);
+            BOOST_TEST_MESSAGE("W=D=" << W << ": DP " << a.dp << " split, " << b.dp << " masked");
+            BOOST_TEST(a.split);
+            BOOST_TEST(double(a.dp) <= 0.8 * double(b.dp));
+        }
+}
+
 BOOST_AUTO_TEST_CASE(batches_have_no_limit) {
     // The CP computes each batch's lines (dp.s BATCH_LINES): 128 lines on
     // 8 PEs (bidir, the vote across batches) are 64 batches, bit-exact;

@@ -287,12 +287,19 @@ enum class RowLayout { Direct = 0, Skewed = 1, Wrapped = 2, Fastest = 3 };
 // Spare forces the spare layout (FirmwareError where it is not feasible).
 enum class SpillLayout { Cheaper, External, Spare };
 
+// How the forward pass runs the columns whose kinds start at different
+// levels (docs/firmware.md, section 2): Fastest shifts the kinds' slots
+// apart and runs split passes where its estimate favours them (bidir
+// without the census, bt or the window); Masked keeps equal slots, one
+// masked pass per kind there (for measuring one against the other).
+enum class PassLayout { Fastest, Masked };
+
 // Plans a frame: the forward plan, batches (overlapping at inner edges by
 // the halo: the vote's line, the vertical window's and the census's), video rows, memory,
 // re-layout. FirmwareError when the set cannot run on `cfg` (what is needed vs available).
 FramePlan plan_frame(const golden::Params& p, const golden::Roi& roi, const isa::MachineConfig& cfg,
-                     SpillLayout layout = SpillLayout::Cheaper,
-                     RowLayout rows = RowLayout::Fastest);
+                     SpillLayout layout = SpillLayout::Cheaper, RowLayout rows = RowLayout::Fastest,
+                     PassLayout passes = PassLayout::Fastest);
 
 // Lower bound of the re-layout's cycles of a frame plan (docs/firmware.md,
 // section 5), in and out, per batch and segment: the ring instructions (the
