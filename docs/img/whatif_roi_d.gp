@@ -28,7 +28,6 @@ set label 1 "real time, 10 fps (100 ms)" at graph 0.01, first 100 left offset 0,
 set arrow 2 from graph 0, first 40 to graph 1, first 40 nohead dt 2 lw 1.5 lc rgb "#888888"
 set label 2 "video rate, 25 fps (40 ms)" at graph 0.01, first 40 left offset 0,0.7 textcolor rgb "#666666"
 set label 3 "3 points that do not fit / cannot run not shown" at graph 0.01, graph 0.03 left front textcolor rgb "#444444"
-set label 4 "beyond ROI 128x128 the time grows 179%, forward grows 115%" at first 128, first 3.2994 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
 plot datafile index 0 using 1:2 with linespoints lw 2 lt 1 pt 7 ps 1.3 title "D=16", \
      datafile index 1 using 1:2 with linespoints lw 2 lt 2 pt 5 ps 1.3 title "D=32", \
      datafile index 2 using 1:2 with linespoints lw 2 lt 3 pt 9 ps 1.3 title "D=64", \
