@@ -13,7 +13,11 @@
 //    picks the cheaper of the external and the spare-PE layouts;
 //  - the DP phases cost a constant per computed slot across ROI widths and
 //    disparity ranges, and a constant per valid state where the two
-//    wavefronts' column profiles match (D <= width / 2).
+//    wavefronts' column profiles match (D <= width / 2); per valid state
+//    they do not depend on the PE count where one batch holds the ROI;
+//  - split passes (the kinds' slots shifted apart) run bit-exact, are
+//    never slower than one masked pass per kind, and at D = width cut the
+//    DP cycles by more than a fifth.
 #define BOOST_TEST_MODULE firmware_whatif
 #include <boost/test/unit_test.hpp>
 #include <map>
@@ -470,6 +474,36 @@ BOOST_AUTO_TEST_CASE(dp_phases_scale_with_the_work) {
     };
     BOOST_TEST(within(per_slot, 0.10));
     BOOST_TEST(within(per_valid_matched, 0.10));
+}
+
+BOOST_AUTO_TEST_CASE(dp_phases_per_valid_state_do_not_depend_on_the_pe_count) {
+    // Where one batch holds the ROI (P >= 2H in bidir), the DP phases (init
+    // + forward + spill + backtrack + merge) cost the same per valid state
+    // at every PE count: the extra PEs hold no line. Within 10% of the
+    // middle of their range, per ROI and D (the D = width cells included).
+    for (int W : {32, 64})
+        for (int D : {16, W}) {
+            std::vector<double> per_state;
+            for (int P : {32, 64, 128}) {
+                g::Params p;
+                p.D = D;
+                const Measured m = run_case(p, W, 16, P);
+                const uint64_t dp = phase(m.r, "init") + phase(m.r, "forward") +
+                                    phase(m.r, "spill") + phase(m.r, "backtrack") +
+                                    phase(m.r, "merge");
+                BOOST_TEST_REQUIRE(m.plan.batches.size() == 1u);
+                per_state.push_back(double(dp) / (16.0 * double(m.plan.f.valid_states)));
+                BOOST_TEST_MESSAGE("W=" << W << " D=" << D << " P=" << P << ": " << dp
+                                        << " DP cycles, " << per_state.back()
+                                        << " per valid state");
+            }
+            const auto [lo, hi] = std::minmax_element(per_state.begin(), per_state.end());
+            const double mid = (*lo + *hi) / 2;
+            BOOST_TEST_CONTEXT("W=" << W << " D=" << D) {
+                BOOST_TEST(*hi - mid <= 0.10 * mid);
+                BOOST_TEST(mid - *lo <= 0.10 * mid);
+            }
+        }
 }
 
 BOOST_AUTO_TEST_CASE(split_passes_run_both_kinds_where_their_levels_differ) {
