@@ -164,12 +164,13 @@ struct Measured {
 };
 
 inline Measured run_on(const g::Params& p, int W, int H, const isa::MachineConfig& cfg,
-                       fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t seed = 0) {
+                       fw::SpillLayout layout = fw::SpillLayout::Cheaper, uint32_t seed = 0,
+                       fw::PassLayout passes = fw::PassLayout::Fastest) {
     std::mt19937 rng(seed ? seed : uint32_t(W * 131 + H * 7));  // the same frame at every P
     const Frame fr = random_frame(rng, W, H, p.D);
     const g::Roi roi{0, 0, W, H};
     Measured m;
-    m.plan = fw::plan_frame(p, roi, cfg, layout);
+    m.plan = fw::plan_frame(p, roi, cfg, layout, fw::RowLayout::Fastest, passes);
     const isa::Program prog = fw::assemble_frame(p, m.plan);
     m.r = fw::run_frame_core(m.plan, prog, g::ImageView{fr.L.data(), W, H, W},
                              g::ImageView{fr.R.data(), W, H, W}, cfg);

@@ -519,24 +519,15 @@ BOOST_AUTO_TEST_CASE(split_passes_run_both_kinds_where_their_levels_differ) {
         bool split;
     };
     auto run = [](const g::Params& p, int W, int H, int P, fw::PassLayout passes, uint32_t seed) {
-        std::mt19937 rng(seed);
-        const Frame fr = random_frame(rng, W, H, p.D);
-        const g::Roi roi{0, 0, W, H};
         isa::MachineConfig cfg;
         cfg.pes = uint32_t(P);
-        const fw::FramePlan plan =
-            fw::plan_frame(p, roi, cfg, fw::SpillLayout::Cheaper, fw::RowLayout::Fastest, passes);
-        const fw::FrameResult r = fw::run_frame_core(plan, fw::assemble_frame(p, plan),
-                                                     g::ImageView{fr.L.data(), W, H, W},
-                                                     g::ImageView{fr.R.data(), W, H, W}, cfg);
-        const g::DisparityMap want = g::compute(p, g::ImageView{fr.L.data(), W, H, W},
-                                                g::ImageView{fr.R.data(), W, H, W}, roi);
-        BOOST_REQUIRE(r.map.data == want.data);
+        const Measured m =
+            run_on(p, W, H, cfg, fw::SpillLayout::Cheaper, seed, passes);  // bit-exact
         bool split = false;
-        for (const fw::ForwardPass& ps : plan.f.passes) split = split || ps.split > 0;
-        return R{r.cycles,
-                 phase(r, "init") + phase(r, "forward") + phase(r, "spill") +
-                     phase(r, "backtrack") + phase(r, "merge"),
+        for (const fw::ForwardPass& ps : m.plan.f.passes) split = split || ps.split > 0;
+        return R{m.r.cycles,
+                 phase(m.r, "init") + phase(m.r, "forward") + phase(m.r, "spill") +
+                     phase(m.r, "backtrack") + phase(m.r, "merge"),
                  split};
     };
     std::mt19937 rng(2026);
