@@ -137,7 +137,7 @@ int64_t column_passes(ForwardPlan& f, bool split) {
 }
 
 // The kinds' slot shift (f.lsh) for the least estimated forward cycles, in
-// bidir frames whose node reads nothing beside the line buffers (the census
+// bidir and joint frames whose node reads nothing beside the line buffers (the census
 // codes, the bt bounds and the window's copies are laid out for equal
 // slots): shifting kind 1 by t > 0 (or kind 0 by -t) lines its first slots
 // up against the other kind's, so the split passes cover both ranges at
@@ -221,8 +221,8 @@ ForwardPlan plan_forward_impl(const golden::Params& p, int N, const isa::Machine
         f.ds = p.seed_disp.free ? -1 : p.seed_disp.value;
     }
     column_ranges(p, N, f);
-    choose_shift(f, split && f.bidir && !f.joint && !tiny && p.kc == 0 &&
-                        p.dissim != golden::Dissim::Bt && p.agg_rx == 0 && p.agg_ry == 0);
+    choose_shift(f, split && f.bidir && !tiny && p.kc == 0 && p.dissim != golden::Dissim::Bt &&
+                        p.agg_rx == 0 && p.agg_ry == 0);
     for (int i = 0; i < N; ++i) f.valid_states += golden::levels_at(i, N, p.D);
 
     const int64_t w = wm_max(p);

@@ -33,7 +33,7 @@ void line_buffers(ForwardPlan& f, const golden::Params& p) {
     int kl = 0;
     for (const ForwardPass& ps : f.passes) kl = std::max(kl, ps.k + ps.jlo + ps.n - 1);
     if (f.joint)
-        kl = std::max({kl, f.s + p.D, N + p.D - 2 - f.s});
+        kl = std::max({kl, f.s + p.D + f.lsh[0], N + p.D - 2 - f.s + f.lsh[1]});
     else if (f.bidir)
         kl = std::max({kl, f.s + p.D - 1 + f.lsh[0], N - 1 - f.s + f.lsh[1]});
     else

@@ -43,7 +43,7 @@ int buffer_addr_r(const ForwardPlan& f, int h, int X) {
 }
 int buffer_addr_l(const ForwardPlan& f, int h, int X) {
     if (!f.bidir) return f.rb + 2 + X;
-    if (f.joint) return h == 0 ? f.rb + 2 + X : f.rb + f.N + f.D - X;
+    if (f.joint) return h == 0 ? f.rb + 2 + X + f.lsh[0] : f.rb + f.N + f.D - X + f.lsh[1];
     return h == 0 ? f.rb + f.s + f.D - X + f.lsh[0] : f.rb + 1 - f.s + X + f.lsh[1];
 }
 

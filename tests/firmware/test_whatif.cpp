@@ -507,8 +507,9 @@ BOOST_AUTO_TEST_CASE(dp_phases_per_valid_state_do_not_depend_on_the_pe_count) {
 }
 
 BOOST_AUTO_TEST_CASE(split_passes_run_both_kinds_where_their_levels_differ) {
-    // Bidir frames whose kinds start their columns at different levels (D
-    // from half the width to the width, free and fixed seed disparities):
+    // Bidir and joint frames whose kinds start their columns at different
+    // levels (D from half the width to the width, free and fixed seed
+    // disparities):
     // the planner's passes (Fastest: the kinds' slots shifted apart, split
     // passes) and the masked passes per kind (Masked) both run bit-exact,
     // the pick is never slower, and at D = width the split passes take at
@@ -538,6 +539,7 @@ BOOST_AUTO_TEST_CASE(split_passes_run_both_kinds_where_their_levels_differ) {
         g::Params p;
         p.D = std::max(2, W / 2 + int(rng() % uint32_t(W - W / 2 + 1)));
         p.vote = rng() % 2 == 0;
+        p.mode = rng() % 2 ? g::Mode::Joint : g::Mode::Bidir;
         if (rng() % 2) {
             const int s = g::resolve_seed_col(p, W);
             p.seed_disp = g::SeedDisp{false, int(rng() % uint32_t(std::min(p.D, W - s)))};
