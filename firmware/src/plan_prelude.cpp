@@ -155,7 +155,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
     int sknc = 0;
     if (rows_top + 255 < fp.mem && (!fp.rl.copies || 2 * fp.hbmax <= 256))
-        sknc = fp.rl.copies && P % 256 == 0 ? 3 : 2;
+        sknc = fp.rl.copies && (P % 256 == 0 || 256 % P == 0) ? 3 : 2;  // P a power of two
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
     equs(os,

@@ -60,6 +60,13 @@ int line_cp(int lines) {
     return lines >= 8 ? 3 : 5;
 }
 
+// The stores of n skewed rounds of both kinds (relayout.inc, RSK_RECVG):
+// two per kind and round, and one mask block (mif, melse, mend) per group
+// of four fused rounds.
+int64_t store_cycles(int64_t n) {
+    return 4 * n + 3 * ((n + 3) / 4);
+}
+
 // The planner's estimate of the direct routes' input rounds (one segment):
 // 2u and 2u + 1 hops with two stores (44 and 49 cycles; bidir) or u + 1
 // hops with one (27; single).
@@ -100,9 +107,9 @@ int64_t plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& cos
     // pixel displacements: d = base - x for kind 0's pixel x
     const int d0 = rl.base - a[0] - (nmax - 1), d1 = rl.base - a[0];
     // the estimate (relayout.inc): a video row two vin and its CP cycles
-    // (line_cp), about 10 more per window; a round 4 cycles of sending, 7 of
-    // storing, 2 |d - wi mod P| of shifts; the direct routes' rounds per
-    // segment as plan_skew counts them
+    // (line_cp), about 10 more per window; a round 4 cycles of sending, its
+    // stores (store_cycles), 2 |d - wi mod P| of shifts; the direct routes'
+    // rounds per segment as plan_skew counts them
     const int vl = costs.video_line, rh = costs.ring_hop;
     if (limit < 0) {
         limit = fp.nseg * (int64_t(H) * (2 * vl + line_cp(H)) + direct_rounds(rl, true, rh));
@@ -130,7 +137,8 @@ int64_t plan_windows(FramePlan& fp, int span, int mem, const isa::CostTable& cos
         int64_t est = 0;
         for (int k = 0; k < 2; ++k)
             est += int64_t(c.whi[k] - c.wlo[k] + 1) * (10 + H * (2 * vl + line_cp(H)));
-        for (int d = d0; d <= d1; ++d) est += 11 + 2 * std::abs(fold(d - wi, P)) * rh;
+        est += store_cycles(d1 - d0 + 1);
+        for (int d = d0; d <= d1; ++d) est += 4 + 2 * std::abs(fold(d - wi, P)) * rh;
         if (best_e < 0 || est < best_e) {
             best_e = est;
             best = c;
@@ -376,13 +384,18 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     rl.skew_out = skew_out;
     rl.dmin = base + lo;
     rl.dmax = base + hi;
-    // the rounds as counted in relayout.inc (RSK_SEND, RSK_RECV): the kind
-    // copies' senders 5 cycles (10 where rows are taken mod P), the single
-    // copy's 8 (12 around the ring), the stores 7, and the shifts
+    // the rounds as counted in relayout.inc (RSK_SEND, RSK_RECV, RSK_RECVG):
+    // the kind copies' senders 5 cycles (6 with P below 256, 10 where P is
+    // not a power of two and the rows are taken mod P), their stores fused
+    // four rounds a group (store_cycles); the single copy's senders 8 (12
+    // around the ring) and stores 7; the shifts
     {
-        const int send = copies ? (P % 256 == 0 ? 5 : 10) : (wrap ? 12 : 8);
+        const bool pow2 = P % 256 == 0 || 256 % P == 0;
+        const int send = copies ? (pow2 ? (P < 256 ? 6 : 5) : 10) : (wrap ? 12 : 8);
+        const int64_t n = rl.dmax - rl.dmin + 1;
         int64_t e = copies ? copies_rows_cost() : rows_cost(1, wrap ? wraps(0) : 0);
-        for (int d = rl.dmin; d <= rl.dmax; ++d) e += send + 7 + 2 * std::abs(d) * rh;
+        e += copies ? store_cycles(n) : 7 * n;
+        for (int d = rl.dmin; d <= rl.dmax; ++d) e += send + 2 * std::abs(d) * rh;
         rl.skew_estimate = e;
     }
     rl.smin = base - skew_out + olo;
