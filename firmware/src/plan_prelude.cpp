@@ -150,12 +150,17 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     // round may read any row that lies in the local memory. SKNC 0: it reads
     // row 0 (clamped); 1: row q mod P (kind copies: 16 bits); 2: the row
     // index's low byte (kind copies: the rows q < 2 lines <= 256 keep their
-    // index); 3: kind copies with P a multiple of 256, whose q mod P has the
-    // low byte of q itself: the sender steps that byte alone.
+    // index); 3: P such that the sender steps a byte alone: kind copies with
+    // P a multiple of 256 or a power of two below (q mod P has the low byte
+    // of q, masked below 256); one copy where the row index (q mod P) / span
+    // wraps with its low byte or at a power of two below 256 (span 2: P a
+    // multiple of 512 or a power of two up to 256).
     const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
+    const bool byte_steps = fp.rl.copies || fp.span() == 1 ? P % 256 == 0 || 256 % P == 0
+                                                           : P % 512 == 0 || 256 % P == 0;
     int sknc = 0;
     if (rows_top + 255 < fp.mem && (!fp.rl.copies || 2 * fp.hbmax <= 256))
-        sknc = fp.rl.copies && (P % 256 == 0 || 256 % P == 0) ? 3 : 2;  // P a power of two
+        sknc = byte_steps ? 3 : 2;
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
     equs(os,

@@ -384,18 +384,30 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     rl.skew_out = skew_out;
     rl.dmin = base + lo;
     rl.dmax = base + hi;
-    // the rounds as counted in relayout.inc (RSK_SEND, RSK_RECV, RSK_RECVG):
-    // the kind copies' senders 5 cycles (6 with P below 256, 10 where P is
-    // not a power of two and the rows are taken mod P), their stores fused
-    // four rounds a group (store_cycles); the single copy's senders 8 (12
-    // around the ring) and stores 7; the shifts
+    // the rounds as counted in relayout.inc (RSK_SEND, RSK_SENDP, RSK_RECV,
+    // RSK_RECVG): the kind copies' senders 5 cycles (6 with P below 256, 10
+    // where P is not a power of two and the rows are taken mod P); the single
+    // copy's, where its row index steps a byte (plan_prelude.cpp, SKNC 3),
+    // two loads and every second round two increments (and two masks below
+    // 512 PEs), else 8 (12 around the ring); the stores fused four rounds a
+    // group (store_cycles) where the senders keep to their pair, else 7 a
+    // round; the shifts
     {
         const bool pow2 = P % 256 == 0 || 256 % P == 0;
-        const int send = copies ? (pow2 ? (P < 256 ? 6 : 5) : 10) : (wrap ? 12 : 8);
+        const bool one_steps = fp.f.bidir ? P % 512 == 0 || 256 % P == 0 : pow2;
         const int64_t n = rl.dmax - rl.dmin + 1;
+        const bool fused = copies || (one_steps && fp.f.bidir && fp.f.census == 0);
         int64_t e = copies ? copies_rows_cost() : rows_cost(1, wrap ? wraps(0) : 0);
-        e += copies ? store_cycles(n) : 7 * n;
-        for (int d = rl.dmin; d <= rl.dmax; ++d) e += send + 2 * std::abs(d) * rh;
+        e += fused ? store_cycles(n) : 7 * n;
+        int64_t send = 0;
+        if (copies)
+            send = n * (pow2 ? (P < 256 ? 6 : 5) : 10);
+        else if (one_steps)
+            send = 4 * n + (n / 2) * (P < 512 ? 4 : 2);
+        else
+            send = n * (wrap ? 12 : 8);
+        e += send;
+        for (int d = rl.dmin; d <= rl.dmax; ++d) e += 2 * std::abs(d) * rh;
         rl.skew_estimate = e;
     }
     rl.smin = base - skew_out + olo;
