@@ -314,14 +314,13 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     if ((wrap || base + span * H > P) && (fp.f.census > 0 || fp.spare || fp.rows_allowed < 2))
         return;
     // The planner's estimate of each placement's input (relayout.inc; the
-    // cost table's video_line and ring_hop, one cycle for the rest): a
-    // skewed round sends (about 14 cycles, 21 around the ring, 22 with kind
-    // copies), shifts 2 |d| hops and stores (15); a video row costs its two
+    // cost table's video_line and ring_hop, one cycle for the rest): the
+    // skewed rounds as rounds_cost counts them; a video row costs its two
     // vin and its CP cycles (line_cp), a row past the ring's end two vin,
     // 10 cycles of merging and its CP cycles more; the direct routes'
-    // rounds as direct_rounds counts them. (The rounds' figures are older hand
-    // counts, kept for these choices; the windowed rows are weighed against
-    // skew_estimate below, counted from the rounds as they run today.)
+    // rounds as direct_rounds counts them. (Census frames keep older hand
+    // counts of the rounds: a skewed round sends in about 14 cycles, 21
+    // around the ring, and stores in 15.)
     const int vl = costs.video_line, rh = costs.ring_hop;
     auto wraps = [&](int off) {  // lines whose row from lane off + span y passes P - 1
         int c = 0;
@@ -336,21 +335,51 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     auto copies_rows_cost = [&] {
         return rows_cost(2, wraps(0)) + int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)));
     };
-    auto skew_cost = [&](int d0, int d1, int send) {
+    // The rounds d0 .. d1 as relayout.inc runs them (RSK_SEND, RSK_SENDP,
+    // RSK_RECV, RSK_RECVG): the kind copies' senders 5 cycles (6 with P below
+    // 256, 10 where P is not a power of two and the rows are taken mod P);
+    // the single copy's, where its row index steps a byte (plan_prelude.cpp,
+    // SKNC 3), two loads and every second round two increments (and two
+    // masks below 512 PEs; single mode one increment a round and a mask
+    // below 256), else 8 (12 around the ring); the stores fused four rounds
+    // a group (store_cycles) in bidir, else 7 a round (two, unmasked, in
+    // single mode); the shifts, two registers of 2 |d| hops.
+    const bool pow2 = P % 256 == 0 || 256 % P == 0;
+    const bool one_steps = fp.f.bidir ? P % 512 == 0 || 256 % P == 0 : pow2;
+    auto rounds_cost = [&](bool cp, int d0, int d1) {
+        const int64_t n = d1 - d0 + 1;
         int64_t c = 0;
-        for (int d = d0; d <= d1; ++d) c += send + 15 + 2 * std::abs(d) * rh;
+        if (fp.f.census > 0) {
+            for (int d = d0; d <= d1; ++d) c += (wrap ? 21 : 14) + 15 + 2 * std::abs(d) * rh;
+            return c;
+        }
+        if (!fp.f.bidir)
+            c += 2 * n;
+        else if (cp || one_steps)
+            c += store_cycles(n);
+        else
+            c += 7 * n;
+        if (cp)
+            c += n * (pow2 ? (P < 256 ? 6 : 5) : 10);
+        else if (one_steps && fp.f.bidir)
+            c += 4 * n + (n / 2) * (P < 512 ? 4 : 2);
+        else if (one_steps)
+            c += n * (P < 256 ? 6 : 5);
+        else
+            c += n * (wrap ? 12 : 8);
+        for (int d = d0; d <= d1; ++d) c += 2 * std::abs(d) * rh;
         return c;
     };
     const int64_t one =
-        skew_cost(base + lo, base + hi, wrap ? 21 : 14) + rows_cost(1, wrap ? wraps(0) : 0);
+        rounds_cost(false, base + lo, base + hi) + rows_cost(1, wrap ? wraps(0) : 0);
     const int64_t direct = rows_cost(1, 0) + direct_rounds(rl, fp.f.bidir, rh);
     if (copies) {
-        const int64_t two_rows = skew_cost(base + lo2, base + hi2, 22) + copies_rows_cost();
+        const int64_t two_rows = rounds_cost(true, base + lo2, base + hi2) + copies_rows_cost();
         // the base above was centred for the copies; without them the
         // single copy's rounds are centred on their own range
         const int b1 = std::max(0, -((lo + hi) / 2));
         const int64_t one_c =
-            skew_cost(b1 + lo, b1 + hi, wrap ? 21 : 14) + rows_cost(1, wrap ? wraps(0) : 0);
+            rounds_cost(false, b1 + lo, b1 + hi) + rows_cost(1, wrap ? wraps(0) : 0);
         copies = two_rows < one_c && two_rows < direct;
         if (!copies) {
             // plan again without the copies (their base and output offset)
@@ -384,32 +413,9 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     rl.skew_out = skew_out;
     rl.dmin = base + lo;
     rl.dmax = base + hi;
-    // the rounds as counted in relayout.inc (RSK_SEND, RSK_SENDP, RSK_RECV,
-    // RSK_RECVG): the kind copies' senders 5 cycles (6 with P below 256, 10
-    // where P is not a power of two and the rows are taken mod P); the single
-    // copy's, where its row index steps a byte (plan_prelude.cpp, SKNC 3),
-    // two loads and every second round two increments (and two masks below
-    // 512 PEs), else 8 (12 around the ring); the stores fused four rounds a
-    // group (store_cycles) where the senders keep to their pair, else 7 a
-    // round; the shifts
-    {
-        const bool pow2 = P % 256 == 0 || 256 % P == 0;
-        const bool one_steps = fp.f.bidir ? P % 512 == 0 || 256 % P == 0 : pow2;
-        const int64_t n = rl.dmax - rl.dmin + 1;
-        const bool fused = copies || (one_steps && fp.f.bidir && fp.f.census == 0);
-        int64_t e = copies ? copies_rows_cost() : rows_cost(1, wrap ? wraps(0) : 0);
-        e += fused ? store_cycles(n) : 7 * n;
-        int64_t send = 0;
-        if (copies)
-            send = n * (pow2 ? (P < 256 ? 6 : 5) : 10);
-        else if (one_steps)
-            send = 4 * n + (n / 2) * (P < 512 ? 4 : 2);
-        else
-            send = n * (wrap ? 12 : 8);
-        e += send;
-        for (int d = rl.dmin; d <= rl.dmax; ++d) e += 2 * std::abs(d) * rh;
-        rl.skew_estimate = e;
-    }
+    // the estimate the windowed rows are weighed against (weigh_windows)
+    rl.skew_estimate = (copies ? copies_rows_cost() : rows_cost(1, wrap ? wraps(0) : 0)) +
+                       rounds_cost(copies, rl.dmin, rl.dmax);
     rl.smin = base - skew_out + olo;
     rl.smax = base - skew_out + ohi;
     rl.ur = rl.ul = 0;
