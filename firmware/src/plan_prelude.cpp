@@ -163,6 +163,12 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
         sknc = byte_steps ? 3 : 2;
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
+    // Packed rounds (relayout.inc, RPK_*): one copy of the skewed rows in
+    // bidir, its senders stepping a byte, no census; the R lanes index the
+    // rows INR - INL above their own, so every line's R row lies within 256
+    // rows of INL.
+    const bool packed = fp.f.bidir && fp.rl.skew && !fp.rl.copies && !fp.rl.windows && sknc == 3 &&
+                        fp.f.census == 0 && fp.inr > fp.inl && fp.inr - fp.inl + fp.hbmax <= 256;
     equs(os,
          {
              {"P", fp.P},
@@ -192,6 +198,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
              {"SKC", fp.rl.copies ? 1 : 0},
              {"SKB", fp.rl.skb},
              {"SKNC", sknc},
+             {"SKPK", packed ? 1 : 0},
              {"YBB", fp.rl.ybb},
              {"YWB1", fp.rl.ywb1},
              {"YWB2", fp.rl.ywb2},

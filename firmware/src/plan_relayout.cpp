@@ -339,11 +339,11 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // RSK_RECV, RSK_RECVG): the kind copies' senders 5 cycles (6 with P below
     // 256, 10 where P is not a power of two and the rows are taken mod P);
     // the single copy's, where its row index steps a byte (plan_prelude.cpp,
-    // SKNC 3), two loads and every second round two increments (and two
-    // masks below 512 PEs; single mode one increment a round and a mask
-    // below 256), else 8 (12 around the ring); the stores fused four rounds
-    // a group (store_cycles) in bidir, else 7 a round (two, unmasked, in
-    // single mode); the shifts, two registers of 2 |d| hops.
+    // SKNC 3), in bidir packed (one register a round, below), in single
+    // mode two loads, an increment and below 256 PEs a mask, else 8 (12
+    // around the ring); the kind copies' stores fused four rounds a group
+    // (store_cycles), else 7 a round (two, unmasked, in single mode); the
+    // shifts, two registers of |d| hops.
     const bool pow2 = P % 256 == 0 || 256 % P == 0;
     const bool one_steps = fp.f.bidir ? P % 512 == 0 || 256 % P == 0 : pow2;
     auto rounds_cost = [&](bool cp, int d0, int d1) {
@@ -353,16 +353,22 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
             for (int d = d0; d <= d1; ++d) c += (wrap ? 21 : 14) + 15 + 2 * std::abs(d) * rh;
             return c;
         }
+        if (!cp && one_steps && fp.f.bidir) {
+            // packed rounds (RPK_ROUNDG, RPK_RECVG): one kind a round, its
+            // index add, one load and the one-hop shift; the first and last
+            // rounds load and shift R too and store a third byte
+            c += 2 * n + 2 + 3 * ((n + 3) / 4) + 4 * n + (n / 2) * (P < 512 ? 4 : 2);
+            for (int d = d0; d <= d1; ++d) c += std::abs(d) * rh;
+            return c + (std::abs(d0) + std::abs(d1)) * rh;
+        }
         if (!fp.f.bidir)
             c += 2 * n;
-        else if (cp || one_steps)
+        else if (cp)
             c += store_cycles(n);
         else
             c += 7 * n;
         if (cp)
             c += n * (pow2 ? (P < 256 ? 6 : 5) : 10);
-        else if (one_steps && fp.f.bidir)
-            c += 4 * n + (n / 2) * (P < 512 ? 4 : 2);
         else if (one_steps)
             c += n * (P < 256 ? 6 : 5);
         else
@@ -370,16 +376,32 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         for (int d = d0; d <= d1; ++d) c += 2 * std::abs(d) * rh;
         return c;
     };
-    const int64_t one =
-        rounds_cost(false, base + lo, base + hi) + rows_cost(1, wrap ? wraps(0) : 0);
-    const int64_t direct = rows_cost(1, 0) + direct_rounds(rl, fp.f.bidir, rh);
+    // The placements are weighed over the frame: every batch runs all the
+    // rounds, its own lines' rows (a short last batch few).
+    int64_t nb = 0, lines_all = 0, wrap0_all = 0, wrapb_all = 0;
+    for (const Batch& b : fp.batches) {
+        ++nb;
+        lines_all += b.lines;
+        for (int y = 0; y < std::min(b.lines, H); ++y) {
+            wrap0_all += (span * y) % P + W > P;
+            wrapb_all += ((skb + span * y) % P + P) % P + W > P;
+        }
+    }
+    auto frame_rows = [&](int copies_n, int64_t wrapped) {
+        return int64_t(copies_n) * lines_all * (2 * vl + line_cp(H)) +
+               wrapped * (2 * vl + 10 + line_cp(int(std::min<int64_t>(wrapped, H))));
+    };
+    const int64_t one_rows = frame_rows(1, wrap ? wrap0_all : 0);
+    const int64_t one = nb * rounds_cost(false, base + lo, base + hi) + one_rows;
+    const int64_t direct = frame_rows(1, 0) + nb * direct_rounds(rl, fp.f.bidir, rh);
     if (copies) {
-        const int64_t two_rows = rounds_cost(true, base + lo2, base + hi2) + copies_rows_cost();
+        const int64_t two_rows =
+            nb * rounds_cost(true, base + lo2, base + hi2) + frame_rows(2, wrap0_all) +
+            wrapb_all * (2 * vl + 10 + line_cp(int(std::min<int64_t>(wrapb_all, H))));
         // the base above was centred for the copies; without them the
         // single copy's rounds are centred on their own range
         const int b1 = std::max(0, -((lo + hi) / 2));
-        const int64_t one_c =
-            rounds_cost(false, b1 + lo, b1 + hi) + rows_cost(1, wrap ? wraps(0) : 0);
+        const int64_t one_c = nb * rounds_cost(false, b1 + lo, b1 + hi) + one_rows;
         copies = two_rows < one_c && two_rows < direct;
         if (!copies) {
             // plan again without the copies (their base and output offset)

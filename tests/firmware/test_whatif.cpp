@@ -28,7 +28,8 @@
 using namespace fwtest;
 
 BOOST_AUTO_TEST_CASE(relayout_at_the_headline_beats_any_direct_routing) {
-    // The skewed rows (wrapped around the ring, one copy per kind) start each
+    // The skewed rows (wrapped around the ring; kind copies or one copy in
+    // packed rounds, whichever the planner finds faster) start each
     // pixel near its line's PEs: the re-layout then costs less than the ring
     // part alone of the direct placement's bound (rows where vin puts them,
     // lines around the ring), i.e. less than any firmware routing from that
@@ -45,7 +46,7 @@ BOOST_AUTO_TEST_CASE(relayout_at_the_headline_beats_any_direct_routing) {
                                       << "), out " << m.r.relayout_out << " (bound "
                                       << m.r.relayout_bound_out << ", direct placement's ring "
                                       << direct.rl.ring_bound_out << ")");
-    BOOST_TEST(m.plan.rl.copies);
+    BOOST_TEST(m.plan.rl.skew);
     BOOST_TEST(m.r.relayout_bound_in > 0);
     BOOST_TEST(m.r.relayout_bound_out > 0);
     BOOST_TEST(m.r.relayout_in < uint64_t(direct.rl.ring_bound_in));
@@ -54,7 +55,8 @@ BOOST_AUTO_TEST_CASE(relayout_at_the_headline_beats_any_direct_routing) {
 }
 
 BOOST_AUTO_TEST_CASE(relayout_of_the_paper_roi_within_2x_of_its_bound) {
-    // The skewed rows with kind copies on a 128x128 ROI held by one batch:
+    // The skewed rows (kind copies or packed rounds) on a 128x128 ROI held
+    // by one batch:
     // each round's stores go to an assembled broadcast address and the
     // senders keep their row (docs/firmware.md, section 5), so the input and
     // the output re-layout cost at most twice their bound. Not met (the
@@ -75,7 +77,7 @@ BOOST_AUTO_TEST_CASE(relayout_of_the_paper_roi_within_2x_of_its_bound) {
                                         << m.r.relayout_out << " / " << m.r.relayout_bound_out
                                         << " = " << out);
         BOOST_TEST_CONTEXT("128x128 D=" << c.D << " P=" << c.P) {
-            BOOST_TEST(m.plan.rl.copies);
+            BOOST_TEST(m.plan.rl.skew);
             BOOST_TEST(m.r.relayout_bound_in > 0);
             BOOST_TEST(m.r.relayout_bound_out > 0);
             BOOST_TEST(in <= 2.0);
