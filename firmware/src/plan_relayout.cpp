@@ -229,13 +229,19 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
         if (owlo != owhi || !place(lo, lo + N - 1 + span * (H - 1), true)) return;
         wrap = true;
     }
-    // the output the plan has: the skewed rows' rounds about 13 cycles (17
-    // around the ring, and a second vout per wrapped line), the direct
-    // routes' 18, and their hops, per segment
+    // the output the plan has: the skewed rows' rounds (below; a second
+    // vout per wrapped line), the direct routes' about 18 cycles, and their
+    // hops, per segment
     int64_t now = 0;
     for (int g = 0; g < fp.nseg; ++g) {
         int s0, s1;
         out_displacements(fp, g, &s0, &s1);
+        // (13 and 17 are older counts of the skewed rows' rounds; their
+        // receivers now step their row's byte where P allows (relayout.inc,
+        // OSKB, 8 or 9 cycles and the hops), but weighed at those counts the
+        // windowed output loses frames it wins: 5 of the item-2 grid and 3
+        // of 216 random frames ran slower. Kept until the windowed output's
+        // own estimate is re-counted.)
         const int fixed = rl.skew ? (rl.wrap ? 17 : 13) : 18;
         for (int s = s0; s <= s1; s += step) now += fixed + std::abs(s) * rh;
         now += 7 + H * (vl + line_cp(H));
