@@ -117,6 +117,45 @@ BOOST_AUTO_TEST_CASE(relayout_of_lines_wider_than_the_ring_within_2x_of_its_boun
     }
 }
 
+BOOST_AUTO_TEST_CASE(relayout_of_narrow_rois_within_2x_of_its_bound) {
+    // 32- and 64-wide ROIs in one video segment, where the planner takes one
+    // copy of the skewed rows in packed rounds (a round where one kind
+    // stores carries L and the neighbouring R pixel in one register) or the
+    // kind copies, and the output's receivers step their row's byte
+    // (docs/firmware.md, section 5): in and out within 2x of their bound,
+    // the paper's 32/64 x 128 at D 16..64 on 256 PEs included. Not within:
+    // 8 and 16 PEs, 32x32 and 32x128 on 32 PEs, 32x128 on 128 (the grid in
+    // docs/firmware.md).
+    struct C {
+        int W, H, D, P;
+    };
+    int packed = 0;
+    for (const C& c :
+         {C{32, 32, 16, 64}, C{32, 32, 16, 128}, C{32, 32, 16, 256}, C{32, 32, 16, 1024},
+          C{32, 128, 16, 64}, C{32, 128, 16, 256}, C{32, 128, 32, 256}, C{32, 128, 16, 1024},
+          C{64, 128, 16, 256}, C{64, 128, 32, 256}, C{64, 128, 64, 256}, C{64, 128, 16, 512}}) {
+        g::Params p;
+        p.D = c.D;
+        const Measured m = run_case(p, c.W, c.H, c.P);
+        const double in = double(m.r.relayout_in) / double(m.r.relayout_bound_in);
+        const double out = double(m.r.relayout_out) / double(m.r.relayout_bound_out);
+        BOOST_TEST_MESSAGE(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P << ": in "
+                               << m.r.relayout_in << " / " << m.r.relayout_bound_in << " = " << in
+                               << ", out " << m.r.relayout_out << " / " << m.r.relayout_bound_out
+                               << " = " << out);
+        packed += m.plan.rl.skew && !m.plan.rl.copies;
+        BOOST_TEST_CONTEXT(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P) {
+            BOOST_TEST(m.plan.nseg == 1);
+            BOOST_TEST(m.plan.rl.skew);
+            BOOST_TEST(m.r.relayout_bound_in > 0);
+            BOOST_TEST(m.r.relayout_bound_out > 0);
+            BOOST_TEST(in <= 2.0);
+            BOOST_TEST(out <= 2.0);
+        }
+    }
+    BOOST_TEST(packed >= 8);
+}
+
 BOOST_AUTO_TEST_CASE(windowed_rows_take_lines_wider_than_the_ring) {
     // Lines wider than the ring (several video segments): the kind copies'
     // skewed rows come in window by window (bidir, joint) and the output's
