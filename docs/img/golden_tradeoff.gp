@@ -18,7 +18,7 @@ set ylabel "mean bad>1 % (nonocc)"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd" lt 1, lc rgb "#eeeeee" lt 1
 set border 3 lc rgb "#444444"
 set tics nomirror
-set xrange [2.478162:23.626263]
+set xrange [2.466332:23.626718]
 set yrange [3.518230246:10.69325017]
 set key outside right top vertical
 set arrow 1 from graph 0, first 9.173810023 to graph 1, first 9.173810023 nohead dt 2 lw 1.5 lc rgb "#888888"

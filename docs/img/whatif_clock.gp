@@ -21,7 +21,7 @@ set tics nomirror
 set logscale x 2
 set logscale y 10
 set xrange [8:200]
-set yrange [0.3721953125:160]
+set yrange [0.3785195312:160]
 set xtics ("10" 10, "20" 20, "40" 40, "80" 80, "160" 160)
 set key top right box opaque samplen 2 width 1 height 0.5
 set arrow 1 from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 1.5 lc rgb "#888888"
