@@ -71,9 +71,9 @@ Axis make_axis(const std::string& name, const std::string& flag, const std::stri
         a.kind = AxisKind::Algo;
         a.values = parse_value_list(flag, text, ValueType::Text);
         for (const std::string& v : a.values)
-            if (v != "single" && v != "bidir")
+            if (v != "single" && v != "bidir" && v != "joint")
                 throw Error("invalid value '" + v + "' in " + flag +
-                            ": expected single, bidir or single,bidir");
+                            ": expected single, bidir or joint (a comma list, e.g. single,bidir)");
         return a;
     }
     for (const AlgoInt& r : kAlgoInts)

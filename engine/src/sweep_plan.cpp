@@ -82,7 +82,7 @@ Prepared prepare(const Spec& s, const std::vector<size_t>& pt, bool want_phases)
     for (const AlgoInt& r : kAlgoInts)
         if (const std::string* v = value_of(s, pt, r.name)) p.*(r.field) = std::atoi(v->c_str());
     if (const std::string* v = value_of(s, pt, "mode"))
-        p.mode = *v == "single" ? g::Mode::Single : g::Mode::Bidir;
+        p.mode = *v == "single" ? g::Mode::Single : *v == "joint" ? g::Mode::Joint : g::Mode::Bidir;
     try {
         g::validate_params(p);
     } catch (const g::ParamError& e) {

@@ -84,6 +84,7 @@ BOOST_AUTO_TEST_CASE(axes_check_their_values) {
     BOOST_CHECK_THROW(sw::make_axis("D", "--D", "0,4"), eng::Error);
     BOOST_CHECK_THROW(sw::make_axis("roi_size", "--roi-size", "32y16"), eng::Error);
     BOOST_CHECK_THROW(sw::make_axis("mode", "--mode", "both"), eng::Error);
+    BOOST_TEST(sw::make_axis("mode", "--mode", "single,bidir,joint").values.size() == 3u);
     BOOST_CHECK_THROW(sw::make_axis("nosuch", "--set nosuch", "1,2"), eng::Error);
     BOOST_CHECK_THROW(sw::make_axis("pes", "--pes", "1"), eng::Error);  // the machine says >= 2
     const sw::Axis a = sw::make_axis("pes", "--pes", "2..200");
@@ -121,6 +122,22 @@ BOOST_AUTO_TEST_CASE(planning_gives_answers_and_jobs) {
     for (const char* want : {"--mem-bytes", "--D", "--vote", "--size", "--roi"})
         BOOST_TEST((std::find(a.begin(), a.end(), want) != a.end()), want);
     BOOST_TEST(!p.phase_names.empty());
+    // A joint point's child runs in joint mode (its --mode from the options).
+    {
+        sw::Spec j = s;
+        j.swept = {sw::make_axis("mode", "--mode", "bidir,joint")};
+        j.fixed.push_back(sw::make_axis("D", "--D", "8"));
+        const sw::Plan jp = sw::plan(j);
+        BOOST_REQUIRE_EQUAL(jp.jobs.size(), 2u);
+        const V& b = jp.jobs[0].args;
+        const V& c = jp.jobs[1].args;
+        const auto mode_of = [](const V& args) {
+            const auto it = std::find(args.begin(), args.end(), std::string("--mode"));
+            return it == args.end() || it + 1 == args.end() ? std::string() : *(it + 1);
+        };
+        BOOST_TEST(mode_of(b) == "bidir");
+        BOOST_TEST(mode_of(c) == "joint");
+    }
     // The plan survives the run folder.
     const sw::Plan back = sw::plan_from_json(sw::to_json(p));
     BOOST_TEST(sw::to_json(back) == sw::to_json(p));
