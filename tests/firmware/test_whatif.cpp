@@ -27,6 +27,30 @@
 
 using namespace fwtest;
 
+namespace {
+
+// A W x H frame at D on P PEs with its re-layout over its bound (in, out),
+// logged.
+struct Relayout {
+    Measured m;
+    double in, out;
+};
+
+Relayout relayout_of(int W, int H, int D, int P) {
+    g::Params p;
+    p.D = D;
+    Relayout r{run_case(p, W, H, P), 0, 0};
+    r.in = double(r.m.r.relayout_in) / double(r.m.r.relayout_bound_in);
+    r.out = double(r.m.r.relayout_out) / double(r.m.r.relayout_bound_out);
+    BOOST_TEST_MESSAGE(W << "x" << H << " D=" << D << " P=" << P << ": in " << r.m.r.relayout_in
+                         << " / " << r.m.r.relayout_bound_in << " = " << r.in << ", out "
+                         << r.m.r.relayout_out << " / " << r.m.r.relayout_bound_out << " = "
+                         << r.out);
+    return r;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(relayout_at_the_headline_beats_any_direct_routing) {
     // The skewed rows (wrapped around the ring; kind copies or one copy in
     // packed rounds, whichever the planner finds faster) start each
@@ -67,15 +91,9 @@ BOOST_AUTO_TEST_CASE(relayout_of_the_paper_roi_within_2x_of_its_bound) {
     };
     for (const C& c : {C{256, 16}, C{256, 32}, C{256, 64}, C{512, 16}, C{512, 32}, C{512, 64},
                        C{1024, 16}, C{1024, 32}, C{1024, 64}}) {
-        g::Params p;
-        p.D = c.D;
-        const Measured m = run_case(p, 128, 128, c.P);
-        const double in = double(m.r.relayout_in) / double(m.r.relayout_bound_in);
-        const double out = double(m.r.relayout_out) / double(m.r.relayout_bound_out);
-        BOOST_TEST_MESSAGE("128x128 D=" << c.D << " P=" << c.P << ": in " << m.r.relayout_in
-                                        << " / " << m.r.relayout_bound_in << " = " << in << ", out "
-                                        << m.r.relayout_out << " / " << m.r.relayout_bound_out
-                                        << " = " << out);
+        const Relayout r = relayout_of(128, 128, c.D, c.P);
+        const Measured& m = r.m;
+        const double in = r.in, out = r.out;
         BOOST_TEST_CONTEXT("128x128 D=" << c.D << " P=" << c.P) {
             BOOST_TEST(m.plan.rl.skew);
             BOOST_TEST(m.r.relayout_bound_in > 0);
@@ -97,15 +115,9 @@ BOOST_AUTO_TEST_CASE(relayout_of_lines_wider_than_the_ring_within_2x_of_its_boun
     };
     for (const C& c : {C{128, 128, 16, 32}, C{64, 128, 16, 32}, C{64, 64, 16, 32},
                        C{128, 128, 16, 64}, C{128, 128, 32, 64}}) {
-        g::Params p;
-        p.D = c.D;
-        const Measured m = run_case(p, c.W, c.H, c.P);
-        const double in = double(m.r.relayout_in) / double(m.r.relayout_bound_in);
-        const double out = double(m.r.relayout_out) / double(m.r.relayout_bound_out);
-        BOOST_TEST_MESSAGE(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P << ": in "
-                               << m.r.relayout_in << " / " << m.r.relayout_bound_in << " = " << in
-                               << ", out " << m.r.relayout_out << " / " << m.r.relayout_bound_out
-                               << " = " << out);
+        const Relayout r = relayout_of(c.W, c.H, c.D, c.P);
+        const Measured& m = r.m;
+        const double in = r.in, out = r.out;
         BOOST_TEST_CONTEXT(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P) {
             BOOST_TEST(m.plan.nseg > 1);
             BOOST_TEST(m.plan.batches.size() > 1u);
@@ -134,15 +146,9 @@ BOOST_AUTO_TEST_CASE(relayout_of_narrow_rois_within_2x_of_its_bound) {
          {C{32, 32, 16, 64}, C{32, 32, 16, 128}, C{32, 32, 16, 256}, C{32, 32, 16, 1024},
           C{32, 128, 16, 64}, C{32, 128, 16, 256}, C{32, 128, 32, 256}, C{32, 128, 16, 1024},
           C{64, 128, 16, 256}, C{64, 128, 32, 256}, C{64, 128, 64, 256}, C{64, 128, 16, 512}}) {
-        g::Params p;
-        p.D = c.D;
-        const Measured m = run_case(p, c.W, c.H, c.P);
-        const double in = double(m.r.relayout_in) / double(m.r.relayout_bound_in);
-        const double out = double(m.r.relayout_out) / double(m.r.relayout_bound_out);
-        BOOST_TEST_MESSAGE(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P << ": in "
-                               << m.r.relayout_in << " / " << m.r.relayout_bound_in << " = " << in
-                               << ", out " << m.r.relayout_out << " / " << m.r.relayout_bound_out
-                               << " = " << out);
+        const Relayout r = relayout_of(c.W, c.H, c.D, c.P);
+        const Measured& m = r.m;
+        const double in = r.in, out = r.out;
         packed += m.plan.rl.skew && !m.plan.rl.copies;
         BOOST_TEST_CONTEXT(c.W << "x" << c.H << " D=" << c.D << " P=" << c.P) {
             BOOST_TEST(m.plan.nseg == 1);
