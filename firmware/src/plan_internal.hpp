@@ -33,6 +33,16 @@ inline int plan_mem(const isa::MachineConfig& cfg) {
     return static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
 }
 
+// The skewed senders keep their row index's low byte and step it alone
+// (relayout.inc, SKNC 3) where q mod P, read a byte, wraps with it: with
+// kind copies or one row a lane (span 1) P a multiple of 256 or a power of
+// two below; one copy at span 2 (index q mod P / 2) a multiple of 512 or a
+// power of two up to 256. relayout.inc checks the same on its own.
+inline bool index_steps_a_byte(int P, bool copies, int span) {
+    const int wrap = copies || span == 1 ? 256 : 512;
+    return P % wrap == 0 || 256 % P == 0;
+}
+
 // ---- plan.cpp ----
 // The largest match cost (SPEC A.9): the window's terms times the largest pixel term.
 int64_t wm_max(const golden::Params& p);

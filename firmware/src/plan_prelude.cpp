@@ -18,6 +18,7 @@ namespace {
 
 using detail::column_bytes;
 using detail::ColumnBytes;
+using detail::index_steps_a_byte;
 using detail::in_lanes;
 using detail::seg_width;
 
@@ -156,8 +157,7 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     // wraps with its low byte or at a power of two below 256 (span 2: P a
     // multiple of 512 or a power of two up to 256).
     const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
-    const bool byte_steps = fp.rl.copies || fp.span() == 1 ? P % 256 == 0 || 256 % P == 0
-                                                           : P % 512 == 0 || 256 % P == 0;
+    const bool byte_steps = index_steps_a_byte(P, fp.rl.copies, fp.span());
     int sknc = 0;
     if (rows_top + 255 < fp.mem && (!fp.rl.copies || 2 * fp.hbmax <= 256))
         sknc = byte_steps ? 3 : 2;

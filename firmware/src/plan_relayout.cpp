@@ -333,14 +333,15 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         for (int y = 0; y < H; ++y) c += ((off + span * y) % P + P) % P + W > P;
         return c;
     };
+    // a wrapped row's second piece: one more line transfer and 10 CP cycles
+    auto wrapped_rows = [&](int64_t n) {
+        return n * (2 * vl + 10 + line_cp(int(std::min<int64_t>(n, H))));
+    };
     auto rows_cost = [&](int copies_n, int wrapped) {
-        return int64_t(copies_n) * H * (2 * vl + line_cp(H)) +
-               int64_t(wrapped) * (2 * vl + 10 + line_cp(wrapped));
+        return int64_t(copies_n) * H * (2 * vl + line_cp(H)) + wrapped_rows(wrapped);
     };
     // both kinds' copies: kind 1's rows start skb lanes on
-    auto copies_rows_cost = [&] {
-        return rows_cost(2, wraps(0)) + int64_t(wraps(skb)) * (2 * vl + 10 + line_cp(wraps(skb)));
-    };
+    auto copies_rows_cost = [&] { return rows_cost(2, wraps(0)) + wrapped_rows(wraps(skb)); };
     // The rounds d0 .. d1 as relayout.inc runs them (RSK_SEND, RSK_SENDP,
     // RSK_RECV, RSK_RECVG): the kind copies' senders 5 cycles (6 with P below
     // 256, 10 where P is not a power of two and the rows are taken mod P);
@@ -350,8 +351,8 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // around the ring); the kind copies' stores fused four rounds a group
     // (store_cycles), else 7 a round (two, unmasked, in single mode); the
     // shifts, two registers of |d| hops.
-    const bool pow2 = P % 256 == 0 || 256 % P == 0;
-    const bool one_steps = fp.f.bidir ? P % 512 == 0 || 256 % P == 0 : pow2;
+    const bool pow2 = index_steps_a_byte(P, true, span);
+    const bool one_steps = index_steps_a_byte(P, false, span);
     auto rounds_cost = [&](bool cp, int d0, int d1) {
         const int64_t n = d1 - d0 + 1;
         int64_t c = 0;
@@ -394,16 +395,14 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         }
     }
     auto frame_rows = [&](int copies_n, int64_t wrapped) {
-        return int64_t(copies_n) * lines_all * (2 * vl + line_cp(H)) +
-               wrapped * (2 * vl + 10 + line_cp(int(std::min<int64_t>(wrapped, H))));
+        return int64_t(copies_n) * lines_all * (2 * vl + line_cp(H)) + wrapped_rows(wrapped);
     };
     const int64_t one_rows = frame_rows(1, wrap ? wrap0_all : 0);
     const int64_t one = nb * rounds_cost(false, base + lo, base + hi) + one_rows;
     const int64_t direct = frame_rows(1, 0) + nb * direct_rounds(rl, fp.f.bidir, rh);
     if (copies) {
-        const int64_t two_rows =
-            nb * rounds_cost(true, base + lo2, base + hi2) + frame_rows(2, wrap0_all) +
-            wrapb_all * (2 * vl + 10 + line_cp(int(std::min<int64_t>(wrapb_all, H))));
+        const int64_t two_rows = nb * rounds_cost(true, base + lo2, base + hi2) +
+                                 frame_rows(2, wrap0_all) + wrapped_rows(wrapb_all);
         // the base above was centred for the copies; without them the
         // single copy's rounds are centred on their own range
         const int b1 = std::max(0, -((lo + hi) / 2));
