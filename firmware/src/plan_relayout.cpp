@@ -179,8 +179,9 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     // spare layout: one line PE per span of 2, every pixel)
     const int step = f.bidir ? 2 : 1;
     const int nr = (N + step - 1) / step;
-    // the estimate (relayout.inc): a round 5 cycles and its hops; a window
-    // about 7 CP cycles and a vout and its CP cycles (line_cp) per line
+    // the estimate (relayout.inc, ROUT_WIN): a round an ldx, its hops and
+    // an stx (4 cycles); a window about 7 CP cycles and a vout and its CP
+    // cycles (line_cp) per line
     const int vl = costs.video_line, rh = costs.ring_hop;
     auto windows = [&](int sko) {
         return floor_div(N - 1 + sko + span * (H - 1), P) - floor_div(sko, P) + 1;
@@ -188,7 +189,7 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     auto estimate = [&](int sko) {
         int64_t h = 0;
         for (int i = 0; i < nr; ++i) h += std::abs(fold(B - sko - step * i, P));
-        return int64_t(nr) * 5 + h * rh + int64_t(windows(sko)) * (7 + H * (vl + line_cp(H)));
+        return int64_t(nr) * 4 + h * rh + int64_t(windows(sko)) * (7 + H * (vl + line_cp(H)));
     };
     // skew_out for the least estimate: hops against windows
     const int centre = B - step * (nr - 1) / 2;
@@ -229,20 +230,18 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
         if (owlo != owhi || !place(lo, lo + N - 1 + span * (H - 1), true)) return;
         wrap = true;
     }
-    // the output the plan has: the skewed rows' rounds (below; a second
-    // vout per wrapped line), the direct routes' about 18 cycles, and their
-    // hops, per segment
+    // the output the plan has, per segment: the skewed rows' rounds (an
+    // ldx, its hops, and where the receivers step their row's byte,
+    // relayout.inc OSKB, a compare, the masked stx and the step: 8 cycles,
+    // an andi more below 256 x span PEs; else the 16-bit row and its
+    // compare, 13, 17 with wrapped rows; a second vout per wrapped line),
+    // the direct routes' about 18 cycles and their hops
+    const bool oskb = !fp.spare && index_steps_a_byte(P, false, span);
     int64_t now = 0;
     for (int g = 0; g < fp.nseg; ++g) {
         int s0, s1;
         out_displacements(fp, g, &s0, &s1);
-        // (13 and 17 are older counts of the skewed rows' rounds; their
-        // receivers now step their row's byte where P allows (relayout.inc,
-        // OSKB, 8 or 9 cycles and the hops), but weighed at those counts the
-        // windowed output loses frames it wins: 5 of the item-2 grid and 3
-        // of 216 random frames ran slower. Kept until the windowed output's
-        // own estimate is re-counted.)
-        const int fixed = rl.skew ? (rl.wrap ? 17 : 13) : 18;
+        const int fixed = rl.skew ? (oskb ? (P < 256 * span ? 9 : 8) : rl.wrap ? 17 : 13) : 18;
         for (int s = s0; s <= s1; s += step) now += fixed + std::abs(s) * rh;
         now += 7 + H * (vl + line_cp(H));
         if (rl.skew && rl.wrap) now += 7 + std::max(0, H - rl.ywo) * (vl + line_cp(H - rl.ywo));
