@@ -18,8 +18,8 @@ namespace {
 
 using detail::column_bytes;
 using detail::ColumnBytes;
-using detail::index_steps_a_byte;
 using detail::in_lanes;
+using detail::index_steps_a_byte;
 using detail::seg_width;
 
 struct Equ {
