@@ -151,11 +151,8 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     // round may read any row that lies in the local memory. SKNC 0: it reads
     // row 0 (clamped); 1: row q mod P (kind copies: 16 bits); 2: the row
     // index's low byte (kind copies: the rows q < 2 lines <= 256 keep their
-    // index); 3: P such that the sender steps a byte alone: kind copies with
-    // P a multiple of 256 or a power of two below (q mod P has the low byte
-    // of q, masked below 256); one copy where the row index (q mod P) / span
-    // wraps with its low byte or at a power of two below 256 (span 2: P a
-    // multiple of 512 or a power of two up to 256).
+    // index); 3: P such that the sender steps a byte alone
+    // (index_steps_a_byte).
     const int rows_top = std::max({fp.inl, fp.inr, fp.cinl, fp.cinr});
     const bool byte_steps = index_steps_a_byte(P, fp.rl.copies, fp.span());
     int sknc = 0;
