@@ -43,6 +43,23 @@ inline bool index_steps_a_byte(int P, bool copies, int span) {
     return P % wrap == 0 || 256 % P == 0;
 }
 
+// The one copy of the skewed rows (relayout.inc, RYS): the senders keep
+// their row index scaled by RYS = 256 / R, so that it wraps with its byte
+// at R rows and steps without a mask; the rows sit RYS bytes apart, the two
+// images' interleaved (INR = INL + 1). R = P / span where that is below 256
+// rows, else 128: where span * R divides P, q mod (span * R) names the same
+// row as q mod P for the batch's lines (at most R). The rows start at the
+// cost planes (no census, no window: `inl` = costl) and take 256 bytes
+// there, with the byte above them in memory as the unclamped senders read
+// (SKNC 3). Else 1 (one byte apart, the index masked where it wraps below
+// 256 rows).
+inline int row_stride(int P, int span, int lines, bool census, bool agg, int inl, int mem) {
+    if (census || agg || inl + 256 >= mem || !index_steps_a_byte(P, false, span)) return 1;
+    const int rows = P / span < 256 ? P / span : 128;
+    if (rows < 2 || lines > rows || 256 % rows != 0) return 1;
+    return 256 / rows;
+}
+
 // ---- plan.cpp ----
 // The largest match cost (SPEC A.9): the window's terms times the largest pixel term.
 int64_t wm_max(const golden::Params& p);

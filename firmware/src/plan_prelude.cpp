@@ -160,12 +160,18 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
         sknc = byte_steps ? 3 : 2;
     else if (fp.rl.copies && rows_top + P - 1 < fp.mem)
         sknc = 1;
+    // Rows rys bytes apart (row_stride): their senders step the scaled
+    // index alone, so the rows must lie where any index reads (SKNC 3).
+    if (fp.rys > 1 && sknc != 3) throw FirmwareError("internal: strided video rows without SKNC 3");
+    int rysl = 0;
+    while ((1 << rysl) < fp.rys) ++rysl;
     // Packed rounds (relayout.inc, RPK_*): one copy of the skewed rows in
     // bidir, its senders stepping a byte, no census; the R lanes index the
     // rows INR - INL above their own, so every line's R row lies within 256
-    // rows of INL.
+    // bytes of INL.
     const bool packed = fp.f.bidir && fp.rl.skew && !fp.rl.copies && !fp.rl.windows && sknc == 3 &&
-                        fp.f.census == 0 && fp.inr > fp.inl && fp.inr - fp.inl + fp.hbmax <= 256;
+                        fp.f.census == 0 && fp.inr > fp.inl &&
+                        fp.inr - fp.inl + fp.rys * (fp.hbmax - 1) <= 255;
     equs(os,
          {
              {"P", fp.P},
@@ -181,6 +187,8 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
              {"INR", fp.inr},
              {"OUT", fp.out},
              {"SPLIT_IN", fp.split_in ? 1 : 0},
+             {"RYS", fp.rys},
+             {"RYSL", rysl},
              {"CINL", fp.cinl},
              {"CINR", fp.cinr},
              {"CSCR", fp.cscr},

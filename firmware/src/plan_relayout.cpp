@@ -346,12 +346,16 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     // 256, 10 where P is not a power of two and the rows are taken mod P);
     // the single copy's, where its row index steps a byte (plan_prelude.cpp,
     // SKNC 3), in bidir packed (one register a round, below), in single
-    // mode two loads, an increment and below 256 PEs a mask, else 8 (12
+    // mode two loads, an increment and below 256 PEs a mask (none where the
+    // rows are strided, row_stride), else 8 (12
     // around the ring); the kind copies' stores fused four rounds a group
     // (store_cycles), else 7 a round (two, unmasked, in single mode); the
     // shifts, two registers of |d| hops.
     const bool pow2 = index_steps_a_byte(P, true, span);
     const bool one_steps = index_steps_a_byte(P, false, span);
+    // one copy's rows rys bytes apart (place_rows): its index steps unmasked
+    const bool strided =
+        row_stride(P, span, H, fp.f.census > 0, fp.f.agg > 0 || fp.f.aggy > 0, fp.f.costl, mem) > 1;
     auto rounds_cost = [&](bool cp, int d0, int d1) {
         const int64_t n = d1 - d0 + 1;
         int64_t c = 0;
@@ -363,7 +367,7 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
             // packed rounds (RPK_ROUNDG, RPK_RECVG): one kind a round, its
             // index add, one load and the one-hop shift; the first and last
             // rounds load and shift R too and store a third byte
-            c += 2 * n + 2 + 3 * ((n + 3) / 4) + 4 * n + (n / 2) * (P < 512 ? 4 : 2);
+            c += 2 * n + 2 + 3 * ((n + 3) / 4) + 4 * n + (n / 2) * (P < 512 && !strided ? 4 : 2);
             for (int d = d0; d <= d1; ++d) c += std::abs(d) * rh;
             return c + (std::abs(d0) + std::abs(d1)) * rh;
         }
@@ -376,7 +380,7 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
         if (cp)
             c += n * (pow2 ? (P < 256 ? 6 : 5) : 10);
         else if (one_steps)
-            c += n * (P < 256 ? 6 : 5);
+            c += n * (P < 256 && !strided ? 6 : 5);
         else
             c += n * (wrap ? 12 : 8);
         for (int d = d0; d <= d1; ++d) c += 2 * std::abs(d) * rh;

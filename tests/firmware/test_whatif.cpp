@@ -135,9 +135,9 @@ BOOST_AUTO_TEST_CASE(relayout_of_narrow_rois_within_2x_of_its_bound) {
     // stores carries L and the neighbouring R pixel in one register) or the
     // kind copies, and the output's receivers step their row's byte
     // (docs/firmware.md, section 5): in and out within 2x of their bound,
-    // the paper's 32/64 x 128 at D 16..64 on 256 PEs included; 32x128 on
-    // 128 PEs (three batches) out only. Not within: 8 and 16 PEs, 32x32 and
-    // 32x128 on 32 PEs, the input of 32x128 on 128 (the grid in
+    // the paper's 32/64 x 128 at D 16..64 on 256 PEs included, and 32x128
+    // on 128 PEs (three batches; its rows 4 bytes apart, row_stride). Not
+    // within: 8 and 16 PEs, 32x32 and 32x128 on 32 PEs (the grid in
     // docs/firmware.md).
     struct C {
         int W, H, D, P;
@@ -164,8 +164,54 @@ BOOST_AUTO_TEST_CASE(relayout_of_narrow_rois_within_2x_of_its_bound) {
     const Relayout b = relayout_of(32, 128, 16, 128);
     BOOST_TEST_CONTEXT("32x128 D=16 P=128") {
         BOOST_TEST(b.m.plan.batches.size() == 3u);
+        BOOST_TEST(b.m.plan.rys == 4);  // 64 rows 4 bytes apart: no mask per index step
+        BOOST_TEST(b.in <= 2.0);
         BOOST_TEST(b.out <= 2.0);
     }
+}
+
+BOOST_AUTO_TEST_CASE(strided_video_rows_run_bit_exact) {
+    // One copy of the skewed rows: the senders keep the row index scaled
+    // so that it wraps with its byte at R = min(P / span, 128) rows, the
+    // rows 256 / R bytes apart, the two images interleaved, no mask per
+    // step (docs/firmware.md, section 5). Random parameters and ROIs on 8
+    // to 1024 PEs, batches included: every frame bit-exact, the stride
+    // taken on most (not with the census or the window, nor where the 256
+    // bytes do not fit).
+    std::mt19937 rng(4909);
+    auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    int runs = 0, strided = 0;
+    for (int it = 0; it < 96; ++it) {
+        const int P = std::vector<int>{8, 16, 32, 64, 128, 256, 512, 1024}[size_t(it % 8)];
+        g::Roi roi;
+        roi.w = uni(2, std::min(P, 96));
+        roi.h = uni(2, 48);
+        const int W = roi.w + uni(0, 6), H = roi.h + uni(0, 3);
+        roi.x0 = uni(0, W - roi.w);
+        roi.y0 = uni(0, H - roi.h);
+        const g::Params p = random_params(rng, roi.w);
+        const Frame fr = random_frame(rng, W, H, p.D);
+        isa::MachineConfig cfg;
+        cfg.pes = uint32_t(P);
+        fw::FramePlan plan;
+        try {
+            plan = fw::plan_frame(p, roi, cfg, fw::SpillLayout::Cheaper, fw::RowLayout::Skewed);
+        } catch (const fw::FirmwareError&) {
+            continue;  // (too few PEs for the vote's halo and the like)
+        }
+        if (!plan.rl.skew || plan.rl.copies || plan.rl.windows) continue;
+        ++runs;
+        const int span = p.mode == g::Mode::Single && !plan.spare ? 1 : 2;
+        BOOST_TEST_CONTEXT(roi.w << "x" << roi.h << " D=" << p.D << " P=" << P << " span " << span
+                                 << " rys " << plan.rys) {
+            BOOST_TEST((plan.rys == 1 || plan.rys * std::min(P / span, 128) == 256));
+            strided += plan.rys > 1;
+            check_frame(p, fr, roi, P, nullptr, 0, fw::RowLayout::Skewed);
+        }
+    }
+    BOOST_TEST_MESSAGE(runs << " one-copy frames, " << strided << " strided");
+    BOOST_TEST(runs >= 20);
+    BOOST_TEST(strided * 10 >= runs * 8);
 }
 
 BOOST_AUTO_TEST_CASE(windowed_rows_take_lines_wider_than_the_ring) {
