@@ -86,17 +86,25 @@ FrameBounds frame_bounds(const golden::Params& p, const FramePlan& plan,
     b.phases.push_back({"forward", per_pe * b.node_cycles,
                         "valid states / P (or one line's column chain) x one node"});
 
-    // Spill: the pointers (2 bits per state) that do not fit beside one
-    // column's 16-bit costs in the local memories go out and come back.
-    const int64_t ptr_bytes = ceil_div(b.states, 4);
+    // Spill: the pointers (2 bits per state) of a batch's lines that do not
+    // fit beside one column's 16-bit costs in the local memories go out and
+    // come back; each batch's backtrack frees the memory for the next, so
+    // the excess is counted batch by batch (of the plan's batches, as the
+    // re-layout's bound is of the plan's placement).
     const int64_t room = P * std::max<int64_t>(0, int64_t{cfg.mem_bytes} - 2 * p.D);
-    const int64_t excess = std::max<int64_t>(0, ptr_bytes - room);
-    if (excess > 0)
+    int64_t spill = 0;
+    for (const Batch& bt : plan.batches) {
+        const int64_t excess =
+            std::max<int64_t>(0, ceil_div(int64_t{bt.lines} * plan.f.valid_states, 4) - room);
+        if (excess > 0)
+            spill += 2 * (int64_t{k.xfer_setup} +
+                          ceil_div(excess, k.ext_bytes_per_cycle) * int64_t{k.ext_beat});
+    }
+    if (spill > 0)
         b.phases.push_back(
-            {"spill",
-             2 * (int64_t{k.xfer_setup} +
-                  ceil_div(excess, k.ext_bytes_per_cycle) * int64_t{k.ext_beat}),
-             "pointer bytes beyond local memory, out and back over the external path"});
+            {"spill", spill,
+             "each batch's pointer bytes beyond local memory, out and back over the external "
+             "path"});
 
     // Backtrack: every line's path (one per kind) crosses its columns one
     // step each, a step reading a pointer at a per-PE address; with the vote

@@ -110,7 +110,9 @@ BOOST_AUTO_TEST_CASE(no_phase_runs_below_its_bound) {
           C{128, 128, 128, 256, g::Mode::Bidir, 0}, C{32, 32, 16, 8, g::Mode::Bidir, 0},
           C{32, 32, 32, 64, g::Mode::Bidir, 0}, C{64, 32, 32, 32, g::Mode::Single, 0},
           C{64, 24, 32, 64, g::Mode::Single, 256}, C{48, 12, 12, 16, g::Mode::Joint, 0},
-          C{20, 9, 8, 5, g::Mode::Bidir, 0}}) {
+          C{20, 9, 8, 5, g::Mode::Bidir, 0},
+          // three batches whose pointers spill (the Tsukuba scene's shape)
+          C{384, 288, 16, 256, g::Mode::Bidir, 0}}) {
         g::Params p;
         p.D = c.D;
         p.mode = c.mode;
