@@ -219,7 +219,11 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
     }
     // output rows: after the constant block, avoiding the map
     // (windowed rows: osize slots, plan_out_windows checked the room)
-    const int orows = fp.rl.owindows ? fp.rl.osize : fp.hbmax;
+    if (fp.rl.skew && !fp.rl.owindows)
+        fp.ryso = detail::out_row_stride(fp.P, fp.span(), fp.spare, f.kbs, f.map, f.N, mem);
+    const int orows = fp.rl.owindows ? fp.rl.osize
+                      : fp.ryso > 1  ? fp.ryso * (fp.hbmax - 1) + 1
+                                     : fp.hbmax;
     fp.out = f.kbs;
     if (fp.out < f.map + f.N && fp.out + orows > f.map) fp.out = f.map + f.N;
     if (fp.out + orows > mem) throw rows_do_not_fit(fp.out + orows, "the output rows", mem);

@@ -60,6 +60,22 @@ inline int row_stride(int P, int span, int lines, bool census, bool agg, int inl
     return 256 / rows;
 }
 
+// The skewed output's rows (relayout.inc, RYSO, skewed output with OSKB):
+// where the receivers' row index wraps below 256 rows (P / span rows), the
+// rows sit 256 / (P / span) bytes apart and the receivers keep the index at
+// that scale, so it wraps with its byte and steps without a mask. Needs the
+// 256 bytes of the output rows where place_rows puts them (after the
+// constant block, or after the map where they would meet it). Else 1.
+inline int out_row_stride(int P, int span, bool spare, int kbs, int map, int N, int mem) {
+    const int rows = P / span;
+    if (spare || !index_steps_a_byte(P, false, span) || P % span != 0 || rows < 2 || rows >= 256 ||
+        256 % rows != 0)
+        return 1;
+    int out = kbs;
+    if (out < map + N && out + 256 > map) out = map + N;
+    return out + 256 <= mem ? 256 / rows : 1;
+}
+
 // ---- plan.cpp ----
 // The largest match cost (SPEC A.9): the window's terms times the largest pixel term.
 int64_t wm_max(const golden::Params& p);

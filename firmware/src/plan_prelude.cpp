@@ -163,8 +163,9 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
     // Rows rys bytes apart (row_stride): their senders step the scaled
     // index alone, so the rows must lie where any index reads (SKNC 3).
     if (fp.rys > 1 && sknc != 3) throw FirmwareError("internal: strided video rows without SKNC 3");
-    int rysl = 0;
+    int rysl = 0, rysol = 0;
     while ((1 << rysl) < fp.rys) ++rysl;
+    while ((1 << rysol) < fp.ryso) ++rysol;
     // Packed rounds (relayout.inc, RPK_*): one copy of the skewed rows in
     // bidir, its senders stepping a byte, no census; the R lanes index the
     // rows INR - INL above their own, so every line's R row lies within 256
@@ -189,6 +190,8 @@ void frame_constants(std::ostringstream& os, const FramePlan& fp) {
              {"SPLIT_IN", fp.split_in ? 1 : 0},
              {"RYS", fp.rys},
              {"RYSL", rysl},
+             {"RYSO", fp.ryso},
+             {"RYSOL", rysol},
              {"CINL", fp.cinl},
              {"CINR", fp.cinr},
              {"CSCR", fp.cscr},

@@ -235,7 +235,11 @@ void plan_out_windows(FramePlan& fp, int span, int mem, const isa::CostTable& co
     // relayout.inc OSKB, a compare, the masked stx and the step: 8 cycles,
     // an andi more below 256 x span PEs; else the 16-bit row and its
     // compare, 13, 17 with wrapped rows; a second vout per wrapped line),
-    // the direct routes' about 18 cycles and their hops
+    // the direct routes' about 18 cycles and their hops. (Where the rows
+    // are strided, out_row_stride, the andi is gone but still counted:
+    // counted at 8 the skewed output was taken on 32x32 at 64 PEs where
+    // the windows are 36 cycles faster; the two estimates are not that
+    // exact, and the one cycle kept leaves the picks as they were.)
     const bool oskb = !fp.spare && index_steps_a_byte(P, false, span);
     int64_t now = 0;
     for (int g = 0; g < fp.nseg; ++g) {

@@ -174,13 +174,14 @@ BOOST_AUTO_TEST_CASE(strided_video_rows_run_bit_exact) {
     // One copy of the skewed rows: the senders keep the row index scaled
     // so that it wraps with its byte at R = min(P / span, 128) rows, the
     // rows 256 / R bytes apart, the two images interleaved, no mask per
-    // step (docs/firmware.md, section 5). Random parameters and ROIs on 8
-    // to 1024 PEs, batches included: every frame bit-exact, the stride
-    // taken on most (not with the census or the window, nor where the 256
-    // bytes do not fit).
+    // step; the skewed output's receivers the same way below 256 rows
+    // (docs/firmware.md, section 5). Random parameters and ROIs on 8 to
+    // 1024 PEs, batches included: every frame bit-exact, the stride taken
+    // on most (not with the census or the window, nor where the 256 bytes
+    // do not fit), the output's on some.
     std::mt19937 rng(4909);
     auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
-    int runs = 0, strided = 0;
+    int runs = 0, strided = 0, ostrided = 0;
     for (int it = 0; it < 96; ++it) {
         const int P = std::vector<int>{8, 16, 32, 64, 128, 256, 512, 1024}[size_t(it % 8)];
         g::Roi roi;
@@ -205,13 +206,17 @@ BOOST_AUTO_TEST_CASE(strided_video_rows_run_bit_exact) {
         BOOST_TEST_CONTEXT(roi.w << "x" << roi.h << " D=" << p.D << " P=" << P << " span " << span
                                  << " rys " << plan.rys) {
             BOOST_TEST((plan.rys == 1 || plan.rys * std::min(P / span, 128) == 256));
+            BOOST_TEST((plan.ryso == 1 || plan.ryso * (P / span) == 256));
             strided += plan.rys > 1;
+            ostrided += plan.ryso > 1;
             check_frame(p, fr, roi, P, nullptr, 0, fw::RowLayout::Skewed);
         }
     }
-    BOOST_TEST_MESSAGE(runs << " one-copy frames, " << strided << " strided");
+    BOOST_TEST_MESSAGE(runs << " one-copy frames, " << strided << " strided, " << ostrided
+                            << " with strided output rows");
     BOOST_TEST(runs >= 20);
     BOOST_TEST(strided * 10 >= runs * 8);
+    BOOST_TEST(ostrided >= 5);
 }
 
 BOOST_AUTO_TEST_CASE(windowed_rows_take_lines_wider_than_the_ring) {

@@ -258,6 +258,7 @@ struct FramePlan {
     int inl = 0, inr = 0, out = 0;  // video rows (local addresses)
     bool split_in = false;          // input re-layout one image at a time (memory)
     int rys = 1;                    // bytes between video rows (one skewed copy: row_stride)
+    int ryso = 1;                   // bytes between output rows (skewed output: out_row_stride)
     int cinl = 0, cinr = 0;         // census code rows in the video layout (census on)
     int cscr = 0;                   // 3 bytes: the census's pixels of the segment beside
     Relayout rl;
