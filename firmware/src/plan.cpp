@@ -171,11 +171,10 @@ void place_rows(FramePlan& fp, const isa::MachineConfig& cfg) {
         // kind copies: row 2y + kind per image (plan_skew checked the room)
         fp.inr = fp.inl + 2 * fp.hbmax;
         end = std::max(end, fp.inl + 4 * fp.hbmax);
-    } else if (fp.rl.skew && detail::row_stride(fp.P, fp.span(), fp.hbmax, f.census > 0,
-                                                f.agg > 0 || f.aggy > 0, fp.inl, mem) > 1) {
+    } else if (fp.rl.skew && detail::row_stride(fp, mem) > 1) {
         // one skewed copy: rows rys bytes apart, the images interleaved
-        fp.rys = detail::row_stride(fp.P, fp.span(), fp.hbmax, f.census > 0,
-                                    f.agg > 0 || f.aggy > 0, fp.inl, mem);
+        // (row_stride's rows start at the cost planes: inl here)
+        fp.rys = detail::row_stride(fp, mem);
         fp.inr = fp.inl + 1;
         end = std::max(end, fp.inl + fp.rys * (fp.hbmax - 1) + 2);
     } else if (fp.inl + 2 * fp.hbmax <= mem) {

@@ -52,11 +52,16 @@ inline bool index_steps_a_byte(int P, bool copies, int span) {
 // cost planes (no census, no window: `inl` = costl) and take 256 bytes
 // there, with the byte above them in memory as the unclamped senders read
 // (SKNC 3). Else 1 (one byte apart, the index masked where it wraps below
-// 256 rows).
-inline int row_stride(int P, int span, int lines, bool census, bool agg, int inl, int mem) {
-    if (census || agg || inl + 256 >= mem || !index_steps_a_byte(P, false, span)) return 1;
+// 256 rows). From the plan's machine, batches and options (not yet its
+// placement: plan_skew weighs the stride before place_rows takes it).
+inline int row_stride(const FramePlan& fp, int mem) {
+    const ForwardPlan& f = fp.f;
+    const int P = fp.P, span = fp.span();
+    if (f.census > 0 || f.agg > 0 || f.aggy > 0 || f.costl + 256 >= mem ||
+        !index_steps_a_byte(P, false, span))
+        return 1;
     const int rows = P / span < 256 ? P / span : 128;
-    if (rows < 2 || lines > rows || 256 % rows != 0) return 1;
+    if (rows < 2 || fp.hbmax > rows || 256 % rows != 0) return 1;
     return 256 / rows;
 }
 

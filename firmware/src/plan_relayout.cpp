@@ -358,8 +358,7 @@ void plan_skew(FramePlan& fp, int span, int mem, const isa::CostTable& costs,
     const bool pow2 = index_steps_a_byte(P, true, span);
     const bool one_steps = index_steps_a_byte(P, false, span);
     // one copy's rows rys bytes apart (place_rows): its index steps unmasked
-    const bool strided =
-        row_stride(P, span, H, fp.f.census > 0, fp.f.agg > 0 || fp.f.aggy > 0, fp.f.costl, mem) > 1;
+    const bool strided = row_stride(fp, mem) > 1;
     auto rounds_cost = [&](bool cp, int d0, int d1) {
         const int64_t n = d1 - d0 + 1;
         int64_t c = 0;

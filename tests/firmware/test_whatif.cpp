@@ -202,7 +202,7 @@ BOOST_AUTO_TEST_CASE(strided_video_rows_run_bit_exact) {
         }
         if (!plan.rl.skew || plan.rl.copies || plan.rl.windows) continue;
         ++runs;
-        const int span = p.mode == g::Mode::Single && !plan.spare ? 1 : 2;
+        const int span = plan.span();
         BOOST_TEST_CONTEXT(roi.w << "x" << roi.h << " D=" << p.D << " P=" << P << " span " << span
                                  << " rys " << plan.rys) {
             BOOST_TEST((plan.rys == 1 || plan.rys * std::min(P / span, 128) == 256));
