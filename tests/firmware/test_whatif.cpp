@@ -107,9 +107,9 @@ BOOST_AUTO_TEST_CASE(relayout_of_the_paper_roi_within_2x_of_its_bound) {
 BOOST_AUTO_TEST_CASE(relayout_of_lines_wider_than_the_ring_within_2x_of_its_bound) {
     // The windowed rows (docs/firmware.md, section 5) on frames of several
     // video segments and batches, D 16 (32 on 64 PEs): in and out within 2x
-    // of their bound. Not within: 8 and 16 PEs (the rounds' loads and
-    // masked stores beside at most P / 2 hops: 128x128 on 16 PEs 2.37x) and
-    // D 64 (the grid in docs/firmware.md).
+    // of their bound. Not within: 8 and 16 PEs (the rounds' indexed loads
+    // and the kinds' separate stores beside at most P / 2 hops: 128x128 on
+    // 16 PEs 2.06x, 8 PEs 2.62x) and D 64 (the grid in docs/firmware.md).
     struct C {
         int W, H, D, P;
     };
