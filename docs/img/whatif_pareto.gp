@@ -19,10 +19,10 @@ set grid xtics ytics mxtics mytics lc rgb "#dddddd" lt 1, lc rgb "#eeeeee" lt 1
 set border 3 lc rgb "#444444"
 set tics nomirror
 set logscale x 2
-set xrange [2.5952:240.232375]
-set yrange [8.693001789:128.0273225]
+set xrange [2.55484:236.186375]
+set yrange [8.645231475:126.0865121]
 set key below horizontal
-set label 1 "pes=512" at first 3.244, first 28.14331579 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
-set label 2 "pes=256" at first 3.28035, first 14.97375551 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+set label 1 "pes=512" at first 3.19355, first 27.84679863 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
+set label 2 "pes=256" at first 3.23175, first 14.82635151 left front point pt 6 ps 3 lw 2 lc rgb "#d62728" offset 1.5,1.5 textcolor rgb "#b01010"
 plot datafile index 0 using 1:2:3 with points pt 7 lt 1 ps variable title "design points (size: area)", \
      datafile index 1 using 1:2 with lines lw 1.5 dt 2 lt 1 title "Pareto front (2 of 8)"
