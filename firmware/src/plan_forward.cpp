@@ -267,4 +267,49 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     return detail::plan_forward_impl(p, N, cfg, false, false);
 }
 
+PairSchedule pair_schedule(const ForwardPlan& f) {
+    PairSchedule r;
+    r.passes = f.slots;
+    r.split = f.slots;
+    if (f.kinds != 2) return r;
+    r.split = INT64_MAX;
+    const int T = f.kmax + 1;  // steps: column k's lower part at k, its upper part at k + 1
+    auto len = [&](int p, int k) {
+        return k >= 1 && k <= f.K[p] ? std::max(0, f.hi[p][k] - f.lo[p][k] + 1) : 0;
+    };
+    auto lower = [&](int p, int k, int m1) {  // levels of column k below m_p(k)
+        if (len(p, k) == 0) return 0;
+        return std::clamp(m1 - (k - 1) - f.lo[p][k], 0, len(p, k));
+    };
+    int64_t states = 0;
+    for (int p = 0; p < 2; ++p)
+        for (int k = 1; k <= f.K[p]; ++k) states += len(p, k);
+    r.even = (states + 1) / 2;
+    // m_p(1) from the whole column on the partner to the whole column on the
+    // own PE at every step.
+    int mlo[2], mhi[2];
+    for (int p = 0; p < 2; ++p) {
+        mlo[p] = f.lo[p][1] - T;
+        mhi[p] = f.hi[p][1] + 1 + T;
+    }
+    for (int a = mlo[0]; a <= mhi[0]; ++a)
+        for (int b = mlo[1]; b <= mhi[1]; ++b) {
+            const int m[2] = {a, b};
+            int64_t t_sum = 0;
+            for (int k = 1; k <= T && t_sum < r.split; ++k) {
+                // PE of kind 0: its lower part of column k, kind 1's upper part of k - 1.
+                const int64_t pe0 = lower(0, k, m[0]) + len(1, k - 1) - lower(1, k - 1, m[1]);
+                const int64_t pe1 = lower(1, k, m[1]) + len(0, k - 1) - lower(0, k - 1, m[0]);
+                t_sum += std::max(pe0, pe1);
+            }
+            if (t_sum < r.split) {
+                r.split = t_sum;
+                r.m1[0] = a;
+                r.m1[1] = b;
+            }
+        }
+    r.steps = T;
+    return r;
+}
+
 }  // namespace imap::firmware

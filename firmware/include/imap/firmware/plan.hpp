@@ -162,6 +162,24 @@ golden::Params firmware_part(const golden::Params& p);
 // FirmwareError when the set does not fit `cfg`.
 ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfig& cfg);
 
+// The planner's model of the forward pass with each kind's columns split
+// over the PE pair (docs/firmware.md, section 7; not run by the firmware
+// yet). Column k of kind p splits at the level boundary m_p(k) = m_p(1) -
+// (k - 1), one level lower each column: its levels below the boundary run
+// on the kind's own PE at step k, the others on the partner PE at step k + 1.
+// Every state's sources are then on the same PE one step or one node earlier,
+// except one 16-bit value a kind and step (the lower part's top, E(k,
+// m_p(k) - 1)) that moves one hop. Node times of one PE; single mode (one
+// kind) has no pair: split = passes.
+struct PairSchedule {
+    int64_t passes = 0;  // today's passes (the plan's slots)
+    int64_t even = 0;    // half of both kinds' valid reachable states (rounded up)
+    int64_t split = 0;   // the split schedule with the least node times
+    int m1[2] = {0, 0};  // its boundaries at column 1
+    int steps = 0;       // its steps (columns 1 .. kmax + 1)
+};
+PairSchedule pair_schedule(const ForwardPlan& f);
+
 // Folder of the firmware sources as the assembler names them ("firmware/asm"):
 // the sources are compiled into the library (firmware_sources()), so
 // diagnostics and fault messages name firmware/asm/FILE:LINE wherever the
