@@ -267,48 +267,145 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
     return detail::plan_forward_impl(p, N, cfg, false, false);
 }
 
+namespace {
+
+// Levels [a, b] (b < a: none).
+struct Span {
+    int a = 0, b = -1;
+    bool none() const { return b < a; }
+};
+
+// Kind p's column k split at m: the lower part (levels below m) and the
+// upper part (the rest); no column: both empty.
+void split_column(const ForwardPlan& f, int p, int k, int m, Span& lower, Span& upper) {
+    lower = upper = Span{};
+    if (k < 1 || k > f.K[p] || f.hi[p][k] < f.lo[p][k]) return;
+    const int cut = std::clamp(m, f.lo[p][k], f.hi[p][k] + 1);
+    lower = Span{f.lo[p][k], cut - 1};
+    upper = Span{cut, f.hi[p][k]};
+}
+
+// The address windows of the PE of kind q at every step (levels offset by
+// its parts' sigma / tau) for boundaries m and the order of its parts;
+// sets sigma[q], tau[q]. Returns false when the parts cannot be ordered so.
+bool pe_windows(const ForwardPlan& f, const int m[2], int q, bool upper_first, int T,
+                std::vector<Span>& win, int& sigma, int& tau) {
+    const int o = 1 - q;
+    sigma = 0;
+    if (!upper_first) {
+        tau = m[q] - m[o] - 1;  // the boundary addresses touch: m_q(k) = m_o(k - 1) + tau
+    } else {
+        // the upper part's every address (and the one above its top, its top
+        // node's D source or pad) below every address of the lower part
+        int lo_min = INT_MAX, hi_max = INT_MIN;
+        for (int k = 1; k <= T; ++k) {
+            Span l, u, l2, u2;
+            split_column(f, q, k, m[q] - (k - 1), l, u);
+            split_column(f, o, k - 1, m[o] - (k - 2), l2, u2);
+            if (!l.none()) lo_min = std::min(lo_min, l.a);
+            if (!u2.none()) hi_max = std::max(hi_max, u2.b);
+        }
+        if (lo_min == INT_MAX || hi_max == INT_MIN) return false;
+        tau = lo_min - hi_max - 2;
+    }
+    win.assign(size_t(T) + 1, Span{});
+    for (int k = 1; k <= T; ++k) {
+        Span l, u, l2, u2;
+        split_column(f, q, k, m[q] - (k - 1), l, u);
+        split_column(f, o, k - 1, m[o] - (k - 2), l2, u2);
+        Span w;
+        if (!l.none()) w = Span{l.a + sigma, l.b + sigma};
+        if (!u2.none())
+            w = w.none() ? Span{u2.a + tau, u2.b + tau}
+                         : Span{std::min(w.a, u2.a + tau), std::max(w.b, u2.b + tau)};
+        win[size_t(k)] = w;
+    }
+    return true;
+}
+
+// Slots of the passes for PE 1's addresses offset by rho from PE 0's.
+int64_t hull_slots(const std::vector<Span> w[2], int T, int rho, int64_t stop) {
+    int64_t t = 0;
+    for (int k = 1; k <= T && t < stop; ++k) {
+        const Span& a = w[0][size_t(k)];
+        const Span& b = w[1][size_t(k)];
+        if (a.none() && b.none()) continue;
+        if (a.none()) {
+            t += b.b - b.a + 1;
+        } else if (b.none()) {
+            t += a.b - a.a + 1;
+        } else {
+            t += std::max(a.b, b.b + rho) - std::min(a.a, b.a + rho) + 1;
+        }
+    }
+    return t;
+}
+
+}  // namespace
+
 PairSchedule pair_schedule(const ForwardPlan& f) {
     PairSchedule r;
-    r.passes = f.slots;
-    r.split = f.slots;
+    r.passes = r.split = r.balanced = f.slots;
     if (f.kinds != 2) return r;
-    r.split = INT64_MAX;
     const int T = f.kmax + 1;  // steps: column k's lower part at k, its upper part at k + 1
-    auto len = [&](int p, int k) {
-        return k >= 1 && k <= f.K[p] ? std::max(0, f.hi[p][k] - f.lo[p][k] + 1) : 0;
-    };
-    auto lower = [&](int p, int k, int m1) {  // levels of column k below m_p(k)
-        if (len(p, k) == 0) return 0;
-        return std::clamp(m1 - (k - 1) - f.lo[p][k], 0, len(p, k));
-    };
+    r.steps = T;
     int64_t states = 0;
     for (int p = 0; p < 2; ++p)
-        for (int k = 1; k <= f.K[p]; ++k) states += len(p, k);
+        for (int k = 1; k <= f.K[p]; ++k) states += std::max(0, f.hi[p][k] - f.lo[p][k] + 1);
     r.even = (states + 1) / 2;
-    // m_p(1) from the whole column on the partner to the whole column on the
-    // own PE at every step.
-    int mlo[2], mhi[2];
+    auto size = [](const Span& s) { return s.none() ? 0 : s.b - s.a + 1; };
+    int mlo[2], mhi[2];  // m from the whole column on the partner to the whole column at home
     for (int p = 0; p < 2; ++p) {
         mlo[p] = f.lo[p][1] - T;
         mhi[p] = f.hi[p][1] + 1 + T;
     }
+    r.balanced = r.split = INT64_MAX;
+    std::vector<Span> w[2];
     for (int a = mlo[0]; a <= mhi[0]; ++a)
         for (int b = mlo[1]; b <= mhi[1]; ++b) {
             const int m[2] = {a, b};
-            int64_t t_sum = 0;
-            for (int k = 1; k <= T && t_sum < r.split; ++k) {
-                // PE of kind 0: its lower part of column k, kind 1's upper part of k - 1.
-                const int64_t pe0 = lower(0, k, m[0]) + len(1, k - 1) - lower(1, k - 1, m[1]);
-                const int64_t pe1 = lower(1, k, m[1]) + len(0, k - 1) - lower(0, k - 1, m[0]);
-                t_sum += std::max(pe0, pe1);
+            int64_t bal = 0;
+            for (int k = 1; k <= T && bal < r.balanced; ++k) {
+                Span l[2], u[2], lp[2], up[2];
+                for (int p = 0; p < 2; ++p) {
+                    split_column(f, p, k, m[p] - (k - 1), l[p], u[p]);
+                    split_column(f, p, k - 1, m[p] - (k - 2), lp[p], up[p]);
+                }
+                bal += std::max(size(l[0]) + size(up[1]), size(l[1]) + size(up[0]));
             }
-            if (t_sum < r.split) {
-                r.split = t_sum;
-                r.m1[0] = a;
-                r.m1[1] = b;
+            r.balanced = std::min(r.balanced, bal);
+            if (bal >= r.split) continue;  // the hull is never below the node counts
+            for (int order = 0; order < 4; ++order) {
+                const bool uf[2] = {(order & 1) != 0, (order & 2) != 0};
+                int sg[2], ta[2];
+                if (!pe_windows(f, m, 0, uf[0], T, w[0], sg[0], ta[0]) ||
+                    !pe_windows(f, m, 1, uf[1], T, w[1], sg[1], ta[1]))
+                    continue;
+                // the hull's slots are convex in rho: integer ternary search
+                int lo = -4 * (f.D + T), hi = 4 * (f.D + T);
+                while (hi - lo > 2) {
+                    const int m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+                    if (hull_slots(w, T, m1, INT64_MAX) <= hull_slots(w, T, m2, INT64_MAX))
+                        hi = m2;
+                    else
+                        lo = m1;
+                }
+                for (int rho = lo; rho <= hi; ++rho) {
+                    const int64_t t = hull_slots(w, T, rho, r.split);
+                    if (t < r.split) {
+                        r.split = t;
+                        r.m[0] = a;
+                        r.m[1] = b;
+                        r.upper_first[0] = uf[0];
+                        r.upper_first[1] = uf[1];
+                        r.sigma[0] = sg[0];
+                        r.tau[0] = ta[0];
+                        r.sigma[1] = sg[1] + rho;
+                        r.tau[1] = ta[1] + rho;
+                    }
+                }
             }
         }
-    r.steps = T;
     return r;
 }
 

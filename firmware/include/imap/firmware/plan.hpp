@@ -164,19 +164,29 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
 
 // The planner's model of the forward pass with each kind's columns split
 // over the PE pair (docs/firmware.md, section 7; not run by the firmware
-// yet). Column k of kind p splits at the level boundary m_p(k) = m_p(1) -
-// (k - 1), one level lower each column: its levels below the boundary run
-// on the kind's own PE at step k, the others on the partner PE at step k + 1.
-// Every state's sources are then on the same PE one step or one node earlier,
-// except one 16-bit value a kind and step (the lower part's top, E(k,
-// m_p(k) - 1)) that moves one hop. Node times of one PE; single mode (one
-// kind) has no pair: split = passes.
+// yet). Column k of kind p splits at the level boundary m_p(k) = m[p] -
+// (k - 1), one level lower each column: its levels below the boundary (the
+// lower part) run on the kind's own PE at step k, the others (the upper
+// part) on the partner PE at step k + 1. Every state's sources are then on
+// the same PE one step or one node earlier, except one 16-bit value a kind
+// and step (the lower part's top, E(k, m_p(k) - 1)) that moves one hop.
+// Addresses are broadcast, so each part keeps a fixed level-to-address
+// offset (the cost planes stay in place) and a step's pass runs over the
+// hull of both PEs' addresses. On the PE of kind q, its own lower part's
+// level j sits at j + sigma[q], the partner kind's upper part's at j +
+// tau[q]: above the lower part and touching it at the boundary (both fall
+// one level a step), or with upper_first[q] below it, apart for the whole
+// pass (the upper part's top node reads the level above it). Node times of
+// one PE; single mode (one kind) has no pair: split = balanced = passes.
 struct PairSchedule {
-    int64_t passes = 0;  // today's passes (the plan's slots)
-    int64_t even = 0;    // half of both kinds' valid reachable states (rounded up)
-    int64_t split = 0;   // the split schedule with the least node times
-    int m1[2] = {0, 0};  // its boundaries at column 1
-    int steps = 0;       // its steps (columns 1 .. kmax + 1)
+    int64_t passes = 0;    // today's passes (the plan's slots)
+    int64_t even = 0;      // half of both kinds' valid reachable states (rounded up)
+    int64_t balanced = 0;  // least sum over the steps of the larger PE's node count
+    int64_t split = 0;     // least sum over the steps of the pass's address hull
+    int m[2] = {0, 0};     // the split's boundaries at column 1
+    bool upper_first[2] = {false, false};
+    int sigma[2] = {0, 0}, tau[2] = {0, 0};
+    int steps = 0;  // columns 1 .. kmax + 1
 };
 PairSchedule pair_schedule(const ForwardPlan& f);
 
