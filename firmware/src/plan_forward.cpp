@@ -288,25 +288,35 @@ void split_column(const ForwardPlan& f, int p, int k, int m, Span& lower, Span& 
 // The address windows of the PE of kind q at every step (levels offset by
 // its parts' sigma / tau) for boundaries m and the order of its parts;
 // sets sigma[q], tau[q]. Returns false when the parts cannot be ordered so.
-bool pe_windows(const ForwardPlan& f, const int m[2], int q, bool upper_first, int T,
-                std::vector<Span>& win, int& sigma, int& tau) {
+bool pe_windows(const ForwardPlan& f, const int m[2], int q, bool upper_first, bool indexed_l,
+                int T, std::vector<Span>& win, int& sigma, int& tau) {
     const int o = 1 - q;
     sigma = 0;
     if (!upper_first) {
         tau = m[q] - m[o] - 1;  // the boundary addresses touch: m_q(k) = m_o(k - 1) + tau
     } else {
         // the upper part's every address (and the one above its top, its top
-        // node's D source or pad) below every address of the lower part
-        int lo_min = INT_MAX, hi_max = INT_MIN;
+        // node's D source or pad) below every address of the lower part, and
+        // so its L' bytes: a node of step k at address x reads L' at k + x,
+        // the lower part's L'_q[i] at i + sigma, the upper part's L'_o[i] at
+        // i + 1 + tau
+        int lo_min = INT_MAX, hi_max = INT_MIN, vlo_min = INT_MAX, vhi_max = INT_MIN;
         for (int k = 1; k <= T; ++k) {
             Span l, u, l2, u2;
             split_column(f, q, k, m[q] - (k - 1), l, u);
             split_column(f, o, k - 1, m[o] - (k - 2), l2, u2);
-            if (!l.none()) lo_min = std::min(lo_min, l.a);
-            if (!u2.none()) hi_max = std::max(hi_max, u2.b);
+            if (!l.none()) {
+                lo_min = std::min(lo_min, l.a);
+                vlo_min = std::min(vlo_min, k + l.a);
+            }
+            if (!u2.none()) {
+                hi_max = std::max(hi_max, u2.b);
+                vhi_max = std::max(vhi_max, k + u2.b);
+            }
         }
         if (lo_min == INT_MAX || hi_max == INT_MIN) return false;
         tau = lo_min - hi_max - 2;
+        if (!indexed_l) tau = std::min(tau, vlo_min - vhi_max - 1);
     }
     win.assign(size_t(T) + 1, Span{});
     for (int k = 1; k <= T; ++k) {
@@ -343,8 +353,9 @@ int64_t hull_slots(const std::vector<Span> w[2], int T, int rho, int64_t stop) {
 
 }  // namespace
 
-PairSchedule pair_schedule(const ForwardPlan& f) {
+PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
     PairSchedule r;
+    r.indexed_l = indexed_l;
     r.passes = r.split = r.balanced = f.slots;
     if (f.kinds != 2) return r;
     const int T = f.kmax + 1;  // steps: column k's lower part at k, its upper part at k + 1
@@ -378,8 +389,8 @@ PairSchedule pair_schedule(const ForwardPlan& f) {
             for (int order = 0; order < 4; ++order) {
                 const bool uf[2] = {(order & 1) != 0, (order & 2) != 0};
                 int sg[2], ta[2];
-                if (!pe_windows(f, m, 0, uf[0], T, w[0], sg[0], ta[0]) ||
-                    !pe_windows(f, m, 1, uf[1], T, w[1], sg[1], ta[1]))
+                if (!pe_windows(f, m, 0, uf[0], indexed_l, T, w[0], sg[0], ta[0]) ||
+                    !pe_windows(f, m, 1, uf[1], indexed_l, T, w[1], sg[1], ta[1]))
                     continue;
                 // the hull's slots are convex in rho: integer ternary search
                 int lo = -4 * (f.D + T), hi = 4 * (f.D + T);

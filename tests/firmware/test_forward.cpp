@@ -130,7 +130,9 @@ BOOST_AUTO_TEST_CASE(out_of_range_weights_are_refused) {
 // column's first level, else from the value sent over from the partner
 // (the top of the kind's lower part one column earlier), O from the lower
 // part's top just sent (or none at the column's first level). Every read
-// must find the right (kind, column, level) or the pad above level D - 1.
+// must find the right (kind, column, level) or the pad above level D - 1,
+// and the L' byte it reads (at step + address, the node's c2 + slot) must
+// be the one its level needs, the same for every node that reads it.
 namespace {
 
 struct Val {
@@ -140,9 +142,10 @@ struct Val {
 
 struct Split {
     int m[2];
-    int off_lower[2],
-        off_upper[2];  // per PE q: its lower part's and the partner kind's upper part's offsets
-    int fall = 1;      // levels the boundary falls a column
+    // per PE q: its lower part's and the partner kind's upper part's offsets
+    int off_lower[2], off_upper[2];
+    int fall = 1;            // levels the boundary falls a column
+    bool indexed_l = false;  // L' read through a per-part offset: not checked
 };
 
 struct PartNode {
@@ -158,6 +161,7 @@ bool simulate_split(const fw::ForwardPlan& f, const Split& sp, int64_t& slots, s
     };
     auto cut = [&](int p, int k) { return std::clamp(boundary(p, k), f.lo[p][k], f.hi[p][k] + 1); };
     std::map<int, Val> mem[2];
+    std::map<int, std::pair<int, int>> lbuf[2];  // per PE: L' byte k + x -> (kind, index)
     // per kind: the top of its lower part sent after the previous step
     // (column k - 1 at step k) and the one before (column k - 2)
     Val sent[2][2];
@@ -221,6 +225,17 @@ bool simulate_split(const fw::ForwardPlan& f, const Split& sp, int64_t& slots, s
                 }
                 const PartNode& n = it->second;
                 const int p = n.kind, c = n.k, j = n.j;
+                // b = L'_p[c + j], read at k + x: one byte for every node that reads it
+                const auto pix = std::make_pair(p, c + j);
+                const auto [lb, fresh] = lbuf[q].emplace(k + x, pix);
+                if (!sp.indexed_l && !fresh && lb->second != pix) {
+                    std::ostringstream os;
+                    os << "step " << k << " PE " << q << ": kind " << p << " (" << c << ", " << j
+                       << ") reads L' byte " << k + x << ", which holds kind " << lb->second.first
+                       << "'s L'[" << lb->second.second << "]";
+                    why = os.str();
+                    return false;
+                }
                 auto expect = [&](const Val& got, int kk, int jj, const char* what) {
                     const Val want = jj == D ? Val{p, kk, D} : Val{p, kk, jj};
                     if (got == want) return true;
@@ -276,41 +291,51 @@ BOOST_AUTO_TEST_CASE(split_schedule_runs_in_place_with_one_value_sent_a_kind_and
             g::Params p;
             p.D = D;
             const fw::ForwardPlan f = fw::plan_forward(p, N, cfg);
-            const fw::PairSchedule s = fw::pair_schedule(f);
-            BOOST_TEST_CONTEXT("N=" << N << " D=" << D) {
-                const Split sp{{s.m[0], s.m[1]}, {s.sigma[0], s.sigma[1]}, {s.tau[0], s.tau[1]}};
-                std::string why;
-                int64_t slots = 0;
-                BOOST_TEST(simulate_split(f, sp, slots, why), why);
-                BOOST_TEST(slots == s.split);
-                BOOST_TEST(s.split <= s.passes);
-                BOOST_TEST(s.balanced <= s.split);
-                // Planted faults: the upper parts one address lower (onto
-                // the lower parts' tops), boundaries falling two levels a
-                // column (two values to send) or none (the lower part's top
-                // would read the upper part computed at the same step).
-                Split low = sp;
-                low.off_upper[0] -= 1;
-                low.off_upper[1] -= 1;
-                BOOST_TEST(!simulate_split(f, low, slots, why));
-                Split two = sp;
-                two.fall = 2;
-                BOOST_TEST(!simulate_split(f, two, slots, why));
-                Split flat = sp;  // inside every column of both kinds, for good
-                flat.fall = 0;
-                for (int p = 0; p < 2; ++p) flat.m[p] = (f.lo[p][1] + f.hi[p][1] + 1) / 2;
-                BOOST_TEST(!simulate_split(f, flat, slots, why));
-                // Every valid state is reachable in bidir with a free seed
-                // disparity: the forward's nodes are the golden's valid states
-                // of sites -1 .. N - 1 but the two start columns s - 1, s.
-                const int64_t nodes =
-                    f.valid_states + D - g::levels_at(f.s - 1, N, D) - g::levels_at(f.s, N, D);
-                BOOST_TEST(s.even == (nodes + 1) / 2);
-                BOOST_TEST_MESSAGE("N=" << N << " D=" << D << ": passes " << s.passes << ", split "
-                                        << s.split << ", balanced " << s.balanced << ", even "
-                                        << s.even << " node times (m " << s.m[0] << ", " << s.m[1]
-                                        << "; upper first " << s.upper_first[0] << s.upper_first[1]
-                                        << ")");
+            for (bool indexed : {false, true}) {
+                const fw::PairSchedule s = fw::pair_schedule(f, indexed);
+                BOOST_TEST_CONTEXT("N=" << N << " D=" << D << (indexed ? ", indexed L'" : "")) {
+                    Split sp{{s.m[0], s.m[1]}, {s.sigma[0], s.sigma[1]}, {s.tau[0], s.tau[1]}};
+                    sp.indexed_l = indexed;
+                    std::string why;
+                    int64_t slots = 0;
+                    BOOST_TEST(simulate_split(f, sp, slots, why), why);
+                    BOOST_TEST(slots == s.split);
+                    BOOST_TEST(s.split <= s.passes);
+                    BOOST_TEST(s.balanced <= s.split);
+                    // Planted faults: the upper parts one address lower (onto
+                    // the lower parts' tops), boundaries falling two levels a
+                    // column (two values to send) or none (the lower part's top
+                    // would read the upper part computed at the same step).
+                    Split low = sp;
+                    low.off_upper[0] -= 1;
+                    low.off_upper[1] -= 1;
+                    BOOST_TEST(!simulate_split(f, low, slots, why));
+                    Split two = sp;
+                    two.fall = 2;
+                    BOOST_TEST(!simulate_split(f, two, slots, why));
+                    Split flat = sp;  // inside every column of both kinds, for good
+                    flat.fall = 0;
+                    for (int p = 0; p < 2; ++p) flat.m[p] = (f.lo[p][1] + f.hi[p][1] + 1) / 2;
+                    BOOST_TEST(!simulate_split(f, flat, slots, why));
+                    // Where the indexed read finds a shorter layout, that
+                    // layout's L' bytes clash when read by broadcast address.
+                    if (indexed && s.split < fw::pair_schedule(f, false).split) {
+                        Split clash = sp;
+                        clash.indexed_l = false;
+                        BOOST_TEST(!simulate_split(f, clash, slots, why));
+                    }
+                    // Every valid state is reachable in bidir with a free seed
+                    // disparity: the forward's nodes are the golden's valid states
+                    // of sites -1 .. N - 1 but the two start columns s - 1, s.
+                    const int64_t nodes =
+                        f.valid_states + D - g::levels_at(f.s - 1, N, D) - g::levels_at(f.s, N, D);
+                    BOOST_TEST(s.even == (nodes + 1) / 2);
+                    BOOST_TEST_MESSAGE(
+                        "N=" << N << " D=" << D << (indexed ? ", indexed L'" : "") << ": passes "
+                             << s.passes << ", split " << s.split << ", balanced " << s.balanced
+                             << ", even " << s.even << " node times (m " << s.m[0] << ", " << s.m[1]
+                             << "; upper first " << s.upper_first[0] << s.upper_first[1] << ")");
+                }
             }
         }
 }

@@ -176,8 +176,13 @@ ForwardPlan plan_forward(const golden::Params& p, int N, const isa::MachineConfi
 // level j sits at j + sigma[q], the partner kind's upper part's at j +
 // tau[q]: above the lower part and touching it at the boundary (both fall
 // one level a step), or with upper_first[q] below it, apart for the whole
-// pass (the upper part's top node reads the level above it). Node times of
-// one PE; single mode (one kind) has no pair: split = balanced = passes.
+// pass (the upper part's top node reads the level above it) and, unless
+// indexed_l, apart in the L' bytes too: a node at address x of step k reads
+// L' at k + x (broadcast), so each PE's L' buffer holds its own kind's and
+// the partner kind's bytes side by side; with indexed_l the node reads L'
+// through a per-PE offset register (`ldx`, one cycle more a node) and the
+// L' bytes do not constrain the layout. Node times of one PE; single mode
+// (one kind) has no pair: split = balanced = passes.
 struct PairSchedule {
     int64_t passes = 0;    // today's passes (the plan's slots)
     int64_t even = 0;      // half of both kinds' valid reachable states (rounded up)
@@ -187,8 +192,9 @@ struct PairSchedule {
     bool upper_first[2] = {false, false};
     int sigma[2] = {0, 0}, tau[2] = {0, 0};
     int steps = 0;  // columns 1 .. kmax + 1
+    bool indexed_l = false;
 };
-PairSchedule pair_schedule(const ForwardPlan& f);
+PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l = false);
 
 // Folder of the firmware sources as the assembler names them ("firmware/asm"):
 // the sources are compiled into the library (firmware_sources()), so
