@@ -367,8 +367,9 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
     auto size = [](const Span& s) { return s.none() ? 0 : s.b - s.a + 1; };
     int mlo[2], mhi[2];  // m from the whole column on the partner to the whole column at home
     for (int p = 0; p < 2; ++p) {
-        mlo[p] = f.lo[p][1] - T;
-        mhi[p] = f.hi[p][1] + 1 + T;
+        const int k = std::min(1, f.K[p]);  // a kind without columns: its boundary is moot
+        mlo[p] = f.K[p] >= 1 ? f.lo[p][k] - T : 0;
+        mhi[p] = f.K[p] >= 1 ? f.hi[p][k] + 1 + T : 0;
     }
     r.balanced = r.split = INT64_MAX;
     std::vector<Span> w[2];
@@ -392,16 +393,25 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
                 if (!pe_windows(f, m, 0, uf[0], indexed_l, T, w[0], sg[0], ta[0]) ||
                     !pe_windows(f, m, 1, uf[1], indexed_l, T, w[1], sg[1], ta[1]))
                     continue;
-                // the hull's slots are convex in rho: integer ternary search
+                // the hull's slots are convex in rho: integer ternary search,
+                // ties to the offset nearest 0 (where the PEs' windows never
+                // meet, every offset costs the same: the planes stay small)
+                auto key = [&](int rho) {
+                    return hull_slots(w, T, rho, INT64_MAX) * (int64_t{1} << 24) + std::abs(rho);
+                };
                 int lo = -4 * (f.D + T), hi = 4 * (f.D + T);
                 while (hi - lo > 2) {
                     const int m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-                    if (hull_slots(w, T, m1, INT64_MAX) <= hull_slots(w, T, m2, INT64_MAX))
+                    if (key(m1) <= key(m2))
                         hi = m2;
                     else
                         lo = m1;
                 }
-                for (int rho = lo; rho <= hi; ++rho) {
+                int best_rho = lo;
+                for (int rho = lo + 1; rho <= hi; ++rho)
+                    if (key(rho) < key(best_rho)) best_rho = rho;
+                {
+                    const int rho = best_rho;
                     const int64_t t = hull_slots(w, T, rho, r.split);
                     if (t < r.split) {
                         r.split = t;
@@ -418,6 +428,82 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
             }
         }
     return r;
+}
+
+SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f) {
+    if (!f.bidir || f.joint || f.ds >= 0 || p.kc > 0 || p.agg_rx > 0 || p.agg_ry > 0 ||
+        p.dissim == golden::Dissim::Bt)
+        throw FirmwareError(
+            "firmware: the split forward runs bidir frames with a free seed disparity and the "
+            "plain match cost only");
+    SplitForward sf;
+    sf.s = pair_schedule(f, false);
+    const PairSchedule& s = sf.s;
+    const int T = f.kmax + 1;
+    auto boundary = [&](int q, int k) { return s.m[q] - (k - 1); };
+    // parts in level terms with the schedule's offsets, slots shifted below
+    int xmin = INT_MAX, xmax = INT_MIN;
+    for (int k = 1; k <= T; ++k) {
+        SplitStep st;
+        st.k = k;
+        int lo = INT_MAX, hi = INT_MIN;
+        for (int q = 0; q < 2; ++q) {
+            const int o = 1 - q;
+            Span l, u, l2, u2;
+            split_column(f, q, k, boundary(q, k), l, u);
+            split_column(f, o, k - 1, boundary(o, k - 1), l2, u2);
+            SplitPart& a = st.part[q][0];
+            SplitPart& b = st.part[q][1];
+            a = SplitPart{q, k, l.a, l.b, s.sigma[q], false};
+            b = SplitPart{o, k - 1, u2.a, u2.b, s.tau[q], true};
+            for (const SplitPart* sp : {&a, &b})
+                if (!sp->none()) {
+                    lo = std::min(lo, sp->lo + sp->off);
+                    hi = std::max(hi, sp->hi + sp->off);
+                }
+        }
+        if (lo > hi) continue;
+        st.x0 = lo;
+        st.n = hi - lo + 1;
+        xmin = std::min(xmin, lo);
+        xmax = std::max(xmax, hi);
+        sf.steps.push_back(st);
+    }
+    // the start column's parts (init) take slots too, and so does the level above a top
+    for (int q = 0; q < 2; ++q) {
+        const int o = 1 - q;
+        xmin = std::min({xmin, f.lo[q][0] + s.sigma[q], f.lo[o][0] + s.tau[q]});
+        xmax = std::max({xmax, f.hi[q][0] + s.sigma[q], f.hi[o][0] + s.tau[q]});
+    }
+    const int shift = -xmin;
+    sf.shift = shift;
+    int vmin = INT_MAX, vmax = INT_MIN;
+    for (SplitStep& st : sf.steps) {
+        st.x0 += shift;
+        for (auto& pe : st.part)
+            for (SplitPart& sp : pe) sp.off += shift;
+        vmin = std::min(vmin, st.k + st.x0);
+        vmax = std::max(vmax, st.k + st.x0 + st.n - 1);
+    }
+    sf.slots = xmax + shift + 2;
+    // memory: constant block, R' of both kinds, L', the values sent, the planes, pointers
+    const int lo_mem = f.kblk + f.kbs;
+    sf.rbr = lo_mem + f.kmax;
+    sf.rbr2 = sf.rbr + 1 + f.kmax;
+    sf.rbl = sf.rbr2 + 1;
+    sf.v0 = vmin;
+    sf.lbytes = vmax - vmin + 1;
+    sf.sent = sf.rbl + sf.lbytes;
+    sf.costl = sf.sent + 4;
+    sf.costh = sf.costl + sf.slots;
+    sf.preg = sf.costh + sf.slots;
+    int a = sf.preg;
+    for (SplitStep& st : sf.steps) {
+        st.addr = a;
+        a += 2 * ((st.n + 7) / 8);
+    }
+    sf.mem_needed = a;
+    return sf;
 }
 
 }  // namespace imap::firmware

@@ -459,6 +459,97 @@ isa::Program assemble_test(const golden::Params& p, const ForwardPlan& f, const 
     return isa::assemble_string(os.str(), firmware_dir() + "/test_plan.s", o);
 }
 
+isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
+                                 const SplitForward& sf, int lines, int P) {
+    ForwardPlan g = f;  // the node's constants at the split's addresses
+    g.costl = sf.costl;
+    g.costh = sf.costh;
+    std::ostringstream os;
+    dp_constants(os, p, g);
+    equs(os, {{"P", P}, {"HB", lines}, {"HROI", lines}, {"SENTW", sf.sent}});
+    dp_macros(os, f);
+    const PairSchedule& s = sf.s;
+    auto cut = [&](int q, int c) {
+        return std::clamp(s.m[q] - (c - 1), f.lo[q][c], f.hi[q][c] + 1);
+    };
+    auto valid = [&](int q, int c, int j) {
+        return c >= 0 && c <= f.K[q] && j >= f.lo[q][c] && j <= f.hi[q][c];
+    };
+    const int D = f.D;
+    // each kind's lower part's top at column k (any slot where it has none)
+    auto top_slot = [&](int q, int k) {
+        if (k > f.K[q]) return 0;
+        const int c = cut(q, k);
+        return c > f.lo[q][k] ? c - 1 + s.sigma[q] + sf.shift : 0;
+    };
+    auto init_part = [&](int q, int kind, int j0, int j1, int off) {
+        if (j1 < j0) return;
+        os << "        SINIT " << q << ", " << j0 + off << ", " << j0 << ", " << j1 << "\n";
+        if (j1 == D - 1) os << "        SPAD " << q << ", " << D - 1 + off << "\n";
+        (void)kind;
+    };
+    os << ".macro PLAN_SPLIT\n";
+    // the start column: the levels below m_q(0) at home before the first step
+    for (int q = 0; q < 2; ++q) init_part(q, q, f.lo[q][0], cut(q, 0) - 1, s.sigma[q] + sf.shift);
+    os << "        SXFER " << top_slot(0, 0) << ", " << top_slot(1, 0) << "\n";
+    // the start column's upper parts, once the first step's lower parts are done
+    bool upper0 = false;
+    auto init_upper = [&] {
+        for (int q = 0; q < 2; ++q) {
+            const int o = 1 - q;
+            init_part(q, o, cut(o, 0), f.hi[o][0], s.tau[q] + sf.shift);
+        }
+        upper0 = true;
+    };
+    for (const SplitStep& st : sf.steps) {
+        if (st.k > 1 && !upper0) init_upper();
+        os << "        SSTEP " << st.x0 << ", " << sf.rbl + st.k + st.x0 - sf.v0 << ", " << st.addr
+           << "\n";
+        struct Ev {
+            int t, q;
+            const SplitPart* sp;
+        };
+        std::vector<Ev> ev;
+        for (int q = 0; q < 2; ++q)
+            for (const SplitPart& sp : st.part[q])
+                if (!sp.none()) ev.push_back({sp.lo + sp.off - st.x0, q, &sp});
+        std::stable_sort(ev.begin(), ev.end(), [](const Ev& a, const Ev& b) { return a.t < b.t; });
+        int at = 0;
+        for (const Ev& e : ev) {
+            if (e.t > at) os << "        SRUN " << at << ", " << e.t << "\n";
+            at = e.t;
+            const SplitPart& sp = *e.sp;
+            const int c = sp.col, j = sp.lo, kind = sp.kind;
+            int how = 0;
+            bool pads = false;
+            if (!valid(kind, c - 1, j)) {
+                how = 1;  // D only
+            } else if (sp.upper) {
+                const bool msent = j == cut(kind, c - 1) - 1;
+                const bool osent = j > f.lo[kind][c];
+                how = msent ? (osent ? 3 : 2) : (osent ? 4 : 0);
+            }
+            if (sp.upper && j == D - 1 && cut(kind, c - 1) == D) pads = true;
+            const int ra = (kind == e.q ? sf.rbr : sf.rbr2) - c;
+            os << "        SFIRST " << e.q << ", " << e.t << ", " << ra << ", " << how << ", "
+               << (pads ? 1 : 0) << "\n";
+        }
+        os << "        SRUN " << at << ", " << st.n << "\n";
+        os << "        SEND " << st.n << "\n";
+        for (int q = 0; q < 2; ++q)
+            for (const SplitPart& sp : st.part[q])
+                if (!sp.none() && sp.hi == D - 1)
+                    os << "        SPAD " << q << ", " << D - 1 + sp.off << "\n";
+        os << "        SXFER " << top_slot(0, st.k) << ", " << top_slot(1, st.k) << "\n";
+        if (st.k == 1) init_upper();
+    }
+    os << ".endm\n";
+    os << ".include \"dp_split_test.s\"\n";
+    isa::AsmOptions o;
+    o.files = &firmware_sources();
+    return isa::assemble_string(os.str(), firmware_dir() + "/split_plan.s", o);
+}
+
 std::vector<std::pair<int, uint32_t>> param_block(const FramePlan& fp) {
     std::vector<std::pair<int, uint32_t>> v;
     v.emplace_back(0, static_cast<uint32_t>(fp.batches.size()));

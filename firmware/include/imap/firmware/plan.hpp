@@ -196,6 +196,39 @@ struct PairSchedule {
 };
 PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l = false);
 
+// The split schedule laid out for the forward harness (dp_split_test.s,
+// dp_split.inc; bidir with a free seed disparity and the default node, the
+// L' bytes read by broadcast address). Slots of the cost planes: a part's
+// level j at slot j + off.
+struct SplitPart {
+    int kind = -1, col = 0, lo = 0, hi = -1, off = 0;
+    bool upper = false;  // the partner kind's upper part (else the PE's own lower part)
+    bool none() const { return hi < lo; }
+};
+struct SplitStep {
+    int k = 0;             // column k's lower parts, column k - 1's upper parts
+    int x0 = 0, n = 0;     // the pass's first slot and its nodes
+    int addr = 0;          // its pointer bytes, 2 per 8 nodes (first node in the top bits)
+    SplitPart part[2][2];  // per PE kind q: [0] its lower part, [1] the partner kind's upper part
+};
+struct SplitForward {
+    PairSchedule s;
+    int shift = 0;  // slots = the schedule's addresses (sigma, tau) + shift
+    int rbr = 0,
+        rbr2 = 0;         // R'[i] of the PE's own kind at rbr - i, of its partner kind at rbr2 - i
+    int rbl = 0, v0 = 0;  // a node of step k at slot x reads L' at rbl + k + x - v0
+    int lbytes = 0;       // L' bytes per PE
+    int sent = 0;         // 4 bytes: the partner kind's last two lower-part tops
+    int costl = 0, costh = 0, slots = 0;
+    int preg = 0, mem_needed = 0;
+    std::vector<SplitStep> steps;
+};
+// Throws FirmwareError for a plan the harness does not run (single or joint
+// mode, a fixed seed disparity, the SPEC A.9 options).
+SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f);
+isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
+                                 const SplitForward& sf, int lines, int P);
+
 // Folder of the firmware sources as the assembler names them ("firmware/asm"):
 // the sources are compiled into the library (firmware_sources()), so
 // diagnostics and fault messages name firmware/asm/FILE:LINE wherever the
