@@ -453,9 +453,11 @@ BOOST_AUTO_TEST_CASE(split_forward_runs_bit_exact) {
         isa::MachineConfig cfg;
         g::Params single;
         single.mode = g::Mode::Single;
+        single.D = 16;
         BOOST_CHECK_THROW(fw::plan_split_forward(single, fw::plan_forward(single, 32, cfg)),
                           fw::FirmwareError);
         g::Params fixed;
+        fixed.D = 16;
         fixed.seed_disp.free = false;
         fixed.seed_disp.value = 3;
         BOOST_CHECK_THROW(fw::plan_split_forward(fixed, fw::plan_forward(fixed, 32, cfg)),
