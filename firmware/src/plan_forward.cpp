@@ -430,14 +430,15 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
     return r;
 }
 
-SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f) {
+SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f, bool indexed) {
     if (!f.bidir || f.joint || f.ds >= 0 || p.kc > 0 || p.agg_rx > 0 || p.agg_ry > 0 ||
         p.dissim == golden::Dissim::Bt)
         throw FirmwareError(
             "firmware: the split forward runs bidir frames with a free seed disparity and the "
             "plain match cost only");
     SplitForward sf;
-    sf.s = pair_schedule(f, false);
+    sf.indexed = indexed;
+    sf.s = pair_schedule(f, indexed);
     const PairSchedule& s = sf.s;
     const int T = f.kmax + 1;
     auto boundary = [&](int q, int k) { return s.m[q] - (k - 1); };
@@ -493,8 +494,50 @@ SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f) {
     sf.rbl = sf.rbr2 + 1;
     sf.v0 = vmin;
     sf.lbytes = vmax - vmin + 1;
+    if (indexed) {
+        // each kind's L' in a region of its own (kind p's L'[i] at rl + p * gap +
+        // i on every PE), the gap between them (at least a region either way)
+        // chosen for the least spread of the four parts' offsets, which must
+        // fit a byte
+        const int region = f.kmax + f.D + 1;
+        const int offl[2] = {s.sigma[0] + shift, s.sigma[1] + shift};
+        const int offu[2] = {s.tau[0] + shift, s.tau[1] + shift};
+        // offsets less the common base: PE 0 lower (kind 0), PE 0 upper (kind
+        // 1), PE 1 lower (kind 1), PE 1 upper (kind 0)
+        auto spread = [&](int gap, int* lo_out) {
+            const int v[4] = {-offl[0], gap - 1 - offu[0], gap - offl[1], -1 - offu[1]};
+            *lo_out = *std::min_element(v, v + 4);
+            return *std::max_element(v, v + 4) - *lo_out;
+        };
+        int best_gap = region, best = INT_MAX, lo_best = 0;
+        for (int g = region; g <= region + 1024; ++g)
+            for (int gap : {g, -g}) {
+                int lo = 0;
+                const int sp = spread(gap, &lo);
+                if (sp < best) {
+                    best = sp;
+                    best_gap = gap;
+                    lo_best = lo;
+                }
+            }
+        if (best > 255)
+            throw FirmwareError("firmware: the split's L' offsets spread over " +
+                                std::to_string(best) + " bytes (an ldx offset is one byte)");
+        sf.rl = sf.rbl + (best_gap < 0 ? -best_gap : 0);  // kind 0's region
+        sf.ru = sf.rl + best_gap;                         // kind 1's
+        sf.lbytes = std::abs(best_gap) + region;
+        sf.cbase = sf.rl + lo_best;
+        for (SplitStep& st : sf.steps)
+            for (int q = 0; q < 2; ++q) {
+                SplitPart& lower = st.part[q][0];
+                SplitPart& upper = st.part[q][1];
+                const int own = q == 0 ? sf.rl : sf.ru, other = q == 0 ? sf.ru : sf.rl;
+                lower.lx = own - sf.cbase - lower.off;
+                upper.lx = other - 1 - sf.cbase - upper.off;
+            }
+    }
     sf.sent = sf.rbl + sf.lbytes;
-    sf.costl = sf.sent + 4;
+    sf.costl = sf.sent + 6;
     sf.costh = sf.costl + sf.slots;
     sf.preg = sf.costh + sf.slots;
     int a = sf.preg;

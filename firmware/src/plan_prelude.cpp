@@ -466,7 +466,9 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
     g.costh = sf.costh;
     std::ostringstream os;
     dp_constants(os, p, g);
-    equs(os, {{"P", P}, {"HB", lines}, {"HROI", lines}, {"SENTW", sf.sent}});
+    equs(
+        os,
+        {{"P", P}, {"HB", lines}, {"HROI", lines}, {"SENTW", sf.sent}, {"LX", sf.indexed ? 1 : 0}});
     dp_macros(os, f);
     const PairSchedule& s = sf.s;
     auto cut = [&](int q, int c) {
@@ -503,8 +505,8 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
     };
     for (const SplitStep& st : sf.steps) {
         if (st.k > 1 && !upper0) init_upper();
-        os << "        SSTEP " << st.x0 << ", " << sf.rbl + st.k + st.x0 - sf.v0 << ", " << st.addr
-           << "\n";
+        const int c2 = sf.indexed ? sf.cbase + st.k + st.x0 : sf.rbl + st.k + st.x0 - sf.v0;
+        os << "        SSTEP " << st.x0 << ", " << c2 << ", " << st.addr << "\n";
         struct Ev {
             int t, q;
             const SplitPart* sp;
@@ -516,7 +518,8 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
         std::stable_sort(ev.begin(), ev.end(), [](const Ev& a, const Ev& b) { return a.t < b.t; });
         int at = 0;
         for (const Ev& e : ev) {
-            if (e.t > at) os << "        SRUN " << at << ", " << e.t << "\n";
+            if (e.t > at)
+                os << "        SLOFF\n        SRUN " << at << ", " << e.t << "\n        SKIND\n";
             at = e.t;
             const SplitPart& sp = *e.sp;
             const int c = sp.col, j = sp.lo, kind = sp.kind;
@@ -532,9 +535,9 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
             if (sp.upper && j == D - 1 && cut(kind, c - 1) == D) pads = true;
             const int ra = (kind == e.q ? sf.rbr : sf.rbr2) - c;
             os << "        SFIRST " << e.q << ", " << e.t << ", " << ra << ", " << how << ", "
-               << (pads ? 1 : 0) << "\n";
+               << (pads ? 1 : 0) << ", " << sp.lx << "\n";
         }
-        os << "        SRUN " << at << ", " << st.n << "\n";
+        os << "        SLOFF\n        SRUN " << at << ", " << st.n << "\n        SKIND\n";
         os << "        SEND " << st.n << "\n";
         for (int q = 0; q < 2; ++q)
             for (const SplitPart& sp : st.part[q])

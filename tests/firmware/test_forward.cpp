@@ -354,12 +354,12 @@ uint64_t forward_cycles(const isa::Machine& m, const isa::Program& prog) {
     return 0;
 }
 
-void check_split(const g::Params& p, int N, int H, std::mt19937& rng) {
+void check_split(const g::Params& p, int N, int H, std::mt19937& rng, bool indexed = false) {
     isa::MachineConfig cfg;
     cfg.pes = 2 * H;
     cfg.mem_bytes = 4096;
     const fw::ForwardPlan f = fw::plan_forward(p, N, cfg);
-    const fw::SplitForward sf = fw::plan_split_forward(p, f);
+    const fw::SplitForward sf = fw::plan_split_forward(p, f, indexed);
     BOOST_TEST_REQUIRE(sf.mem_needed <= int(cfg.mem_bytes),
                        "needs " << sf.mem_needed << ": slots " << sf.slots << ", L' " << sf.lbytes
                                 << ", m " << sf.s.m[0] << "," << sf.s.m[1] << " sigma "
@@ -387,11 +387,18 @@ void check_split(const g::Params& p, int N, int H, std::mt19937& rng) {
                 m.mem_write(pe, uint32_t(sf.rbr - i), rp(ln, q, i));
                 m.mem_write(pe, uint32_t(sf.rbr2 - i), rp(ln, 1 - q, i));
             }
-            for (const fw::SplitStep& st : sf.steps)
-                for (const fw::SplitPart& sp : st.part[q])
-                    for (int j = sp.lo; j <= sp.hi; ++j)
-                        m.mem_write(pe, uint32_t(sf.rbl + st.k + j + sp.off - sf.v0),
-                                    lp(ln, sp.kind, sp.col + j));
+            if (sf.indexed) {
+                for (int i = 0; i <= f.kmax + p.D; ++i) {
+                    m.mem_write(pe, uint32_t(sf.rl + i), lp(ln, 0, i));
+                    m.mem_write(pe, uint32_t(sf.ru + i), lp(ln, 1, i));
+                }
+            } else {
+                for (const fw::SplitStep& st : sf.steps)
+                    for (const fw::SplitPart& sp : st.part[q])
+                        for (int j = sp.lo; j <= sp.hi; ++j)
+                            m.mem_write(pe, uint32_t(sf.rbl + st.k + j + sp.off - sf.v0),
+                                        lp(ln, sp.kind, sp.col + j));
+            }
         }
     m.run();
     BOOST_REQUIRE(m.halted());
@@ -428,11 +435,11 @@ void check_split(const g::Params& p, int N, int H, std::mt19937& rng) {
     m2.load(today);
     load_lines(m2, f, lines);
     m2.run();
-    BOOST_TEST_MESSAGE("N=" << N << " D=" << p.D << ": " << checked << " pointers, forward "
-                            << forward_cycles(m, prog) << " cycles in " << sf.steps.size()
-                            << " steps (split " << sf.s.split << " slots), today's passes "
-                            << forward_cycles(m2, today) << " cycles (" << sf.s.passes
-                            << " slots)");
+    BOOST_TEST_MESSAGE("N=" << N << " D=" << p.D << (indexed ? ", indexed L'" : "") << ": "
+                            << checked << " pointers, forward " << forward_cycles(m, prog)
+                            << " cycles in " << sf.steps.size() << " steps (split " << sf.s.split
+                            << " slots), today's passes " << forward_cycles(m2, today)
+                            << " cycles (" << sf.s.passes << " slots)");
 }
 
 }  // namespace
@@ -444,9 +451,10 @@ BOOST_AUTO_TEST_CASE(split_forward_runs_bit_exact) {
             if (D > N) continue;
             g::Params p;
             p.D = D;
-            BOOST_TEST_CONTEXT(describe(p, N, 2)) {
-                check_split(p, N, 2, rng);
-            }
+            for (bool indexed : {false, true})
+                BOOST_TEST_CONTEXT(describe(p, N, 2) << (indexed ? ", indexed L'" : "")) {
+                    check_split(p, N, 2, rng, indexed);
+                }
         }
     // what the harness does not run is refused
     {
@@ -469,8 +477,9 @@ BOOST_AUTO_TEST_CASE(split_forward_runs_bit_exact) {
         g::Params p = random_params(rng, N);
         p.mode = g::Mode::Bidir;
         p.seed_disp.free = true;
-        BOOST_TEST_CONTEXT(describe(p, N, 2)) {
-            check_split(p, N, 2, rng);
+        const bool indexed = it % 2 == 1;
+        BOOST_TEST_CONTEXT(describe(p, N, 2) << (indexed ? ", indexed L'" : "")) {
+            check_split(p, N, 2, rng, indexed);
         }
     }
 }

@@ -203,6 +203,7 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l = false);
 struct SplitPart {
     int kind = -1, col = 0, lo = 0, hi = -1, off = 0;
     bool upper = false;  // the partner kind's upper part (else the PE's own lower part)
+    int lx = 0;          // indexed: its L' offset (the node reads L' at lx + c2 + slot)
     bool none() const { return hi < lo; }
 };
 struct SplitStep {
@@ -214,18 +215,23 @@ struct SplitStep {
 struct SplitForward {
     PairSchedule s;
     int shift = 0;  // slots = the schedule's addresses (sigma, tau) + shift
-    int rbr = 0,
-        rbr2 = 0;         // R'[i] of the PE's own kind at rbr - i, of its partner kind at rbr2 - i
-    int rbl = 0, v0 = 0;  // a node of step k at slot x reads L' at rbl + k + x - v0
-    int lbytes = 0;       // L' bytes per PE
-    int sent = 0;         // 4 bytes: the partner kind's last two lower-part tops
+    // R'[i] of the PE's own kind at rbr - i, of its partner kind at rbr2 - i
+    int rbr = 0, rbr2 = 0;
+    bool indexed = false;  // the node reads L' through its part's offset (ldx)
+    // broadcast: a node of step k at slot x reads L' at rbl + k + x - v0;
+    // indexed: at lx + cbase + k + x, kind 0's L'[i] at rl + i, kind 1's at
+    // ru + i (on every PE)
+    int rbl = 0, v0 = 0, rl = 0, ru = 0, cbase = 0;
+    int lbytes = 0;  // L' bytes per PE
+    int sent = 0;    // 6 bytes: the partner kind's last two lower-part tops, the offset
     int costl = 0, costh = 0, slots = 0;
     int preg = 0, mem_needed = 0;
     std::vector<SplitStep> steps;
 };
 // Throws FirmwareError for a plan the harness does not run (single or joint
 // mode, a fixed seed disparity, the SPEC A.9 options).
-SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f);
+SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f,
+                                bool indexed = false);
 isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
                                  const SplitForward& sf, int lines, int P);
 
