@@ -484,22 +484,22 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
         const int c = cut(q, k);
         return c > f.lo[q][k] ? c - 1 + s.sigma[q] + sf.shift : 0;
     };
-    auto init_part = [&](int q, int kind, int j0, int j1, int off) {
+    // the start column's levels j0..j1 on the PEs of kind q, level j at slot j + off
+    auto init_part = [&](int q, int j0, int j1, int off) {
         if (j1 < j0) return;
         os << "        SINIT " << q << ", " << j0 + off << ", " << j0 << ", " << j1 << "\n";
         if (j1 == D - 1) os << "        SPAD " << q << ", " << D - 1 + off << "\n";
-        (void)kind;
     };
     os << ".macro PLAN_SPLIT\n";
     // the start column: the levels below m_q(0) at home before the first step
-    for (int q = 0; q < 2; ++q) init_part(q, q, f.lo[q][0], cut(q, 0) - 1, s.sigma[q] + sf.shift);
+    for (int q = 0; q < 2; ++q) init_part(q, f.lo[q][0], cut(q, 0) - 1, s.sigma[q] + sf.shift);
     os << "        SXFER " << top_slot(0, 0) << ", " << top_slot(1, 0) << "\n";
     // the start column's upper parts, once the first step's lower parts are done
     bool upper0 = false;
     auto init_upper = [&] {
         for (int q = 0; q < 2; ++q) {
             const int o = 1 - q;
-            init_part(q, o, cut(o, 0), f.hi[o][0], s.tau[q] + sf.shift);
+            init_part(q, cut(o, 0), f.hi[o][0], s.tau[q] + sf.shift);
         }
         upper0 = true;
     };
