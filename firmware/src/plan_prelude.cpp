@@ -493,7 +493,7 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
     os << ".macro PLAN_SPLIT\n";
     // the start column: the levels below m_q(0) at home before the first step
     for (int q = 0; q < 2; ++q) init_part(q, f.lo[q][0], cut(q, 0) - 1, s.sigma[q] + sf.shift);
-    os << "        SXFER " << top_slot(0, 0) << ", " << top_slot(1, 0) << "\n";
+    os << "        SXFER " << top_slot(0, 0) << ", " << top_slot(1, 0) << ", 0\n";
     // the start column's upper parts, once the first step's lower parts are done
     bool upper0 = false;
     auto init_upper = [&] {
@@ -518,8 +518,7 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
         std::stable_sort(ev.begin(), ev.end(), [](const Ev& a, const Ev& b) { return a.t < b.t; });
         int at = 0;
         for (const Ev& e : ev) {
-            if (e.t > at)
-                os << "        SLOFF\n        SRUN " << at << ", " << e.t << "\n        SKIND\n";
+            if (e.t > at) os << "        SRUN " << at << ", " << e.t << "\n";
             at = e.t;
             const SplitPart& sp = *e.sp;
             const int c = sp.col, j = sp.lo, kind = sp.kind;
@@ -535,15 +534,16 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
             if (sp.upper && j == D - 1 && cut(kind, c - 1) == D) pads = true;
             const int ra = (kind == e.q ? sf.rbr : sf.rbr2) - c;
             os << "        SFIRST " << e.q << ", " << e.t << ", " << ra << ", " << how << ", "
-               << (pads ? 1 : 0) << ", " << sp.lx << "\n";
+               << (pads ? 1 : 0) << ", " << sp.lx << ", " << st.k % 2 << "\n";
         }
-        os << "        SLOFF\n        SRUN " << at << ", " << st.n << "\n        SKIND\n";
+        os << "        SRUN " << at << ", " << st.n << "\n";
         os << "        SEND " << st.n << "\n";
         for (int q = 0; q < 2; ++q)
             for (const SplitPart& sp : st.part[q])
                 if (!sp.none() && sp.hi == D - 1)
                     os << "        SPAD " << q << ", " << D - 1 + sp.off << "\n";
-        os << "        SXFER " << top_slot(0, st.k) << ", " << top_slot(1, st.k) << "\n";
+        os << "        SXFER " << top_slot(0, st.k) << ", " << top_slot(1, st.k) << ", " << st.k
+           << "\n";
         if (st.k == 1) init_upper();
     }
     os << ".endm\n";
