@@ -275,12 +275,12 @@ struct Span {
     bool none() const { return b < a; }
 };
 
-// Kind p's column k split at m: the lower part (levels below m) and the
-// upper part (the rest); no column: both empty.
+// Kind p's column k split by the boundary m at column 1 (split_cut): the
+// lower part and the upper part; no column: both empty.
 void split_column(const ForwardPlan& f, int p, int k, int m, Span& lower, Span& upper) {
     lower = upper = Span{};
     if (k < 1 || k > f.K[p] || f.hi[p][k] < f.lo[p][k]) return;
-    const int cut = std::clamp(m, f.lo[p][k], f.hi[p][k] + 1);
+    const int cut = detail::split_cut(f, p, m, k);
     lower = Span{f.lo[p][k], cut - 1};
     upper = Span{cut, f.hi[p][k]};
 }
@@ -303,8 +303,8 @@ bool pe_windows(const ForwardPlan& f, const int m[2], int q, bool upper_first, b
         int lo_min = INT_MAX, hi_max = INT_MIN, vlo_min = INT_MAX, vhi_max = INT_MIN;
         for (int k = 1; k <= T; ++k) {
             Span l, u, l2, u2;
-            split_column(f, q, k, m[q] - (k - 1), l, u);
-            split_column(f, o, k - 1, m[o] - (k - 2), l2, u2);
+            split_column(f, q, k, m[q], l, u);
+            split_column(f, o, k - 1, m[o], l2, u2);
             if (!l.none()) {
                 lo_min = std::min(lo_min, l.a);
                 vlo_min = std::min(vlo_min, k + l.a);
@@ -321,8 +321,8 @@ bool pe_windows(const ForwardPlan& f, const int m[2], int q, bool upper_first, b
     win.assign(size_t(T) + 1, Span{});
     for (int k = 1; k <= T; ++k) {
         Span l, u, l2, u2;
-        split_column(f, q, k, m[q] - (k - 1), l, u);
-        split_column(f, o, k - 1, m[o] - (k - 2), l2, u2);
+        split_column(f, q, k, m[q], l, u);
+        split_column(f, o, k - 1, m[o], l2, u2);
         Span w;
         if (!l.none()) w = Span{l.a + sigma, l.b + sigma};
         if (!u2.none())
@@ -380,8 +380,8 @@ PairSchedule pair_schedule(const ForwardPlan& f, bool indexed_l) {
             for (int k = 1; k <= T && bal < r.balanced; ++k) {
                 Span l[2], u[2], lp[2], up[2];
                 for (int p = 0; p < 2; ++p) {
-                    split_column(f, p, k, m[p] - (k - 1), l[p], u[p]);
-                    split_column(f, p, k - 1, m[p] - (k - 2), lp[p], up[p]);
+                    split_column(f, p, k, m[p], l[p], u[p]);
+                    split_column(f, p, k - 1, m[p], lp[p], up[p]);
                 }
                 bal += std::max(size(l[0]) + size(up[1]), size(l[1]) + size(up[0]));
             }
@@ -441,7 +441,6 @@ SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f, b
     sf.s = pair_schedule(f, indexed);
     const PairSchedule& s = sf.s;
     const int T = f.kmax + 1;
-    auto boundary = [&](int q, int k) { return s.m[q] - (k - 1); };
     // parts in level terms with the schedule's offsets, slots shifted below
     int xmin = INT_MAX, xmax = INT_MIN;
     for (int k = 1; k <= T; ++k) {
@@ -451,8 +450,8 @@ SplitForward plan_split_forward(const golden::Params& p, const ForwardPlan& f, b
         for (int q = 0; q < 2; ++q) {
             const int o = 1 - q;
             Span l, u, l2, u2;
-            split_column(f, q, k, boundary(q, k), l, u);
-            split_column(f, o, k - 1, boundary(o, k - 1), l2, u2);
+            split_column(f, q, k, s.m[q], l, u);
+            split_column(f, o, k - 1, s.m[o], l2, u2);
             SplitPart& a = st.part[q][0];
             SplitPart& b = st.part[q][1];
             a = SplitPart{q, k, l.a, l.b, s.sigma[q], false};

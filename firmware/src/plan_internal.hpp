@@ -33,6 +33,13 @@ inline int plan_mem(const isa::MachineConfig& cfg) {
     return static_cast<int>(std::min<uint32_t>(cfg.mem_bytes, 1u << 20));
 }
 
+// The split forward (docs/firmware.md, section 7): kind p's column k with
+// the boundary m at column 1 falling one level a column; the first level
+// that runs on the partner (hi + 1: none, lo: the whole column).
+inline int split_cut(const ForwardPlan& f, int p, int m, int k) {
+    return std::clamp(m - (k - 1), f.lo[p][k], f.hi[p][k] + 1);
+}
+
 // The skewed senders keep their row index's low byte and step it alone
 // (relayout.inc, SKNC 3) where q mod P, read a byte, wraps with it: with
 // kind copies or one row a lane (span 1) P a multiple of 256 or a power of

@@ -471,9 +471,7 @@ isa::Program assemble_split_test(const golden::Params& p, const ForwardPlan& f,
         {{"P", P}, {"HB", lines}, {"HROI", lines}, {"SENTW", sf.sent}, {"LX", sf.indexed ? 1 : 0}});
     dp_macros(os, f);
     const PairSchedule& s = sf.s;
-    auto cut = [&](int q, int c) {
-        return std::clamp(s.m[q] - (c - 1), f.lo[q][c], f.hi[q][c] + 1);
-    };
+    auto cut = [&](int q, int c) { return detail::split_cut(f, q, s.m[q], c); };
     auto valid = [&](int q, int c, int j) {
         return c >= 0 && c <= f.K[q] && j >= f.lo[q][c] && j <= f.hi[q][c];
     };
