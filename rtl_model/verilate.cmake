@@ -64,9 +64,9 @@ function(imap_rtl_verilate target prefix hdl verif pes mem ext variant assert co
     OPT_SLOW ${opt_slow}
     OPT_GLOBAL ${opt_slow})
   # Verilator counts the trace's per-cycle dump functions (__Trace__N.cpp) as
-  # fast code, but they run only while a run writes waves, and they are most
-  # of a traced configuration's compile time: compiled like the slow code
-  # (the later flag wins). The file lists are verilate()'s, read back from
+  # fast code, but they run only while a run writes waves, and they take a
+  # quarter of a traced configuration's compile time: compiled like the slow
+  # code (the later flag wins; docs/performance.md). The file lists are verilate()'s, read back from
   # the copy it includes (written when it verilated, at configure time).
   include("${CMAKE_CURRENT_BINARY_DIR}/CMakeFiles/${target}.dir/${prefix}.dir/${prefix}_copy.cmake")
   list(JOIN opt_slow " " trace_flags)
